@@ -1,0 +1,231 @@
+//! Oriented bounding boxes.
+
+use glam::{DMat3, DQuat, DVec3, Mat3, Vec3};
+
+use crate::ray::{Ray, SlabClip, ray_f64};
+use crate::round::up_safe;
+use crate::{Aabb, FitError, Pose, Sphere};
+
+/// Slack added to every |R| entry of the box-box test so that near-parallel
+/// edges, whose cross product is tiny and rounding-dominated, never give a
+/// false separation (RAPID; Ericson, Real-Time Collision Detection 4.4.1). It
+/// multiplies half lengths, so the test may call boxes apart by less than about
+/// 1e-5 of their size touching, but never calls touching boxes apart.
+const PARALLEL_EPSILON: f32 = 1e-5;
+
+/// An oriented box: the points `p` with `|(p - center) . axes.col(i)| <= half_extents[i]`.
+///
+/// `axes` is a rotation matrix whose columns are the box's unit axes.
+///
+/// ```
+/// use bvol_volumes::{Obb, ObbMethod};
+/// use glam::Vec3;
+/// let rod: Vec<Vec3> = (0..10).map(|i| Vec3::splat(i as f32)).collect();
+/// let obb = Obb::fit(&rod, ObbMethod::MinVolume).unwrap();
+/// assert!(rod.iter().all(|&p| obb.contains_point(p)));
+/// assert!(obb.volume() < 1e-3); // a thin box along the diagonal
+/// ```
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Obb {
+    /// Centre.
+    pub center: Vec3,
+    /// Unit axes as the columns of a rotation.
+    pub axes: Mat3,
+    /// Half the size along each axis, `>= 0`.
+    pub half_extents: Vec3,
+}
+
+impl Default for Obb {
+    fn default() -> Self {
+        Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ZERO }
+    }
+}
+
+/// A right-handed orthonormal basis whose first axis is along `a` and second in
+/// the plane of `a` and `b` (Gram-Schmidt); any orthonormal basis stands in for
+/// degenerate input.
+pub(crate) fn basis(a: DVec3, b: DVec3) -> DMat3 {
+    let x = a.try_normalize().unwrap_or(DVec3::X);
+    let y = (b - x * x.dot(b)).try_normalize().unwrap_or_else(|| x.any_orthonormal_vector());
+    DMat3::from_cols(x, y, x.cross(y))
+}
+
+impl Obb {
+    /// The tight box on the given axes (orthonormalised first: the first column
+    /// is kept, the second made orthogonal to it, the third their cross product)
+    /// holding every point.
+    ///
+    /// ```
+    /// use bvol_volumes::Obb;
+    /// use glam::{Mat3, Vec3};
+    /// let obb = Obb::from_axes(Mat3::IDENTITY, &[Vec3::ZERO, Vec3::new(2.0, 4.0, 6.0)]).unwrap();
+    /// assert_eq!((obb.center, obb.half_extents), (Vec3::new(1.0, 2.0, 3.0), Vec3::new(1.0, 2.0, 3.0)));
+    /// ```
+    pub fn from_axes(axes: Mat3, points: &[Vec3]) -> Result<Obb, FitError> {
+        crate::fit::check(points)?;
+        let m = basis(axes.x_axis.as_dvec3(), axes.y_axis.as_dvec3());
+        Ok(Obb::on_basis(m, points))
+    }
+
+    /// The box from axes (DESIGN "The box from axes"): project on each axis,
+    /// centre = sum of `(k_min + k_max) / 2 * axis`, half length `(k_max - k_min) / 2`;
+    /// then the half lengths are recomputed about the f32 centre and rounded up,
+    /// so every point stays inside after rounding. `m` must be orthonormal.
+    pub(crate) fn on_basis(m: DMat3, points: &[Vec3]) -> Obb {
+        Obb::on_basis_f64(m, || points.iter().map(|p| p.as_dvec3()))
+    }
+
+    /// [`Obb::on_basis`] for f64 points, given as a re-playable iterator.
+    pub(crate) fn on_basis_f64<I: Iterator<Item = DVec3>>(m: DMat3, points: impl Fn() -> I) -> Obb {
+        let axes = m.as_mat3();
+        let a = axes.as_dmat3();
+        let at = a.transpose();
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for p in points() {
+            let k = at * p;
+            lo = lo.min(k);
+            hi = hi.max(k);
+        }
+        let center = (a * ((lo + hi) * 0.5)).as_vec3();
+        let c = center.as_dvec3();
+        let h = points().fold(DVec3::ZERO, |h, p| h.max((at * (p - c)).abs()));
+        let half_extents = Vec3::new(up_safe(h.x), up_safe(h.y), up_safe(h.z));
+        Obb { center, axes, half_extents }
+    }
+
+    /// Whether `p` lies inside or on the box, evaluated in f64.
+    pub fn contains_point(&self, p: Vec3) -> bool {
+        let k = self.axes.as_dmat3().transpose() * (p.as_dvec3() - self.center.as_dvec3());
+        k.abs().cmple(self.half_extents.as_dvec3()).all()
+    }
+
+    /// Volume, `8 hx hy hz`.
+    pub fn volume(&self) -> f32 {
+        let h = self.half_extents.as_dvec3();
+        (8.0 * h.x * h.y * h.z) as f32
+    }
+
+    /// Surface area.
+    pub fn surface_area(&self) -> f32 {
+        let h = self.half_extents.as_dvec3();
+        (8.0 * (h.x * h.y + h.y * h.z + h.z * h.x)) as f32
+    }
+
+    /// The eight corners, exact in f64: the slab set's vertices, through the dual
+    /// basis, so they hold even where the f32 axes are not exactly orthonormal.
+    pub(crate) fn corners_f64(&self) -> [DVec3; 8] {
+        let dual = self.axes.as_dmat3().transpose().inverse();
+        let (c, h) = (self.center.as_dvec3(), self.half_extents.as_dvec3());
+        std::array::from_fn(|i| {
+            let s = DVec3::new(
+                if i & 1 == 0 { -h.x } else { h.x },
+                if i & 2 == 0 { -h.y } else { h.y },
+                if i & 4 == 0 { -h.z } else { h.z },
+            );
+            c + dual * s
+        })
+    }
+
+    /// The box moved by a rigid pose. Axes and centre are rotated in f64 and
+    /// rounded; the half lengths grow by a bound on that rounding, so the exact
+    /// image of the old box stays inside.
+    pub fn transformed(&self, pose: &Pose) -> Obb {
+        let r = pose.rotation_f64();
+        let center = pose.apply_f64(self.center.as_dvec3());
+        let axes = (r * self.axes.as_dmat3()).as_mat3();
+        let h = self.half_extents.as_dvec3();
+        let c = center.as_vec3();
+        let slip = (c.as_dvec3() - center).length();
+        let pad = slip + 8.0 * f32::EPSILON as f64 * (h.length() + c.as_dvec3().abs().max_element());
+        let half_extents = Vec3::new(up_safe(h.x + pad), up_safe(h.y + pad), up_safe(h.z + pad));
+        Obb { center: c, axes, half_extents }
+    }
+
+    /// A box holding both: centre between them, axes from the halfway rotation of
+    /// the two (quaternions of agreeing sign), extents refit on the 16 corners.
+    pub fn merge(&self, other: &Obb) -> Obb {
+        let q0 = DQuat::from_mat3(&self.axes.as_dmat3()).normalize();
+        let mut q1 = DQuat::from_mat3(&other.axes.as_dmat3()).normalize();
+        if q0.dot(q1) < 0.0 {
+            q1 = -q1;
+        }
+        let m = DMat3::from_quat((q0 + q1).normalize());
+        let m = basis(m.x_axis, m.y_axis);
+        let corners: Vec<DVec3> =
+            self.corners_f64().into_iter().chain(other.corners_f64()).collect();
+        Obb::on_basis_f64(m, || corners.iter().copied())
+    }
+
+    /// The tight box around this box, rounded outward.
+    pub fn aabb(&self) -> Aabb {
+        let corners = self.corners_f64();
+        let lo = corners.iter().fold(DVec3::INFINITY, |a, &c| a.min(c));
+        let hi = corners.iter().fold(DVec3::NEG_INFINITY, |a, &c| a.max(c));
+        Aabb::from_f64_outward(lo, hi)
+    }
+
+    /// Whether two boxes overlap or touch: the 15-axis separating-axis test
+    /// (Gottschalk, Lin & Manocha 1996; Ericson 4.4.1), with early exit and the
+    /// parallel-edge epsilon, in the frame of `self`.
+    pub fn overlaps(&self, other: &Obb) -> bool {
+        let (a, b) = (self, other);
+        let (ae, be) = (a.half_extents, b.half_extents);
+        let at = a.axes.transpose();
+        let r = at * b.axes; // r.col(j)[i] = a_i . b_j
+        let t = at * (b.center - a.center);
+        let abs_r = Mat3::from_cols(
+            r.x_axis.abs() + PARALLEL_EPSILON,
+            r.y_axis.abs() + PARALLEL_EPSILON,
+            r.z_axis.abs() + PARALLEL_EPSILON,
+        );
+        let abs_rt = abs_r.transpose();
+        // Face axes of A: rb = sum_j be_j |r_ij| = row i of abs_r . be.
+        if t.abs().cmpgt(ae + abs_r * be).any() {
+            return false;
+        }
+        // Face axes of B: ra = sum_i ae_i |r_ij| = column j of abs_r . ae.
+        let tb = r.transpose() * t;
+        if tb.abs().cmpgt(abs_rt * ae + be).any() {
+            return false;
+        }
+        // Edge axes a_i x b_j.
+        for i in 0..3 {
+            let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+            for j in 0..3 {
+                let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+                let ra = ae[i1] * abs_r.col(j)[i2] + ae[i2] * abs_r.col(j)[i1];
+                let rb = be[j1] * abs_r.col(j2)[i] + be[j2] * abs_r.col(j1)[i];
+                let d = t[i2] * r.col(j)[i1] - t[i1] * r.col(j)[i2];
+                if d.abs() > ra + rb {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Whether the box overlaps or touches a sphere: the distance from the sphere's
+    /// centre to its closest point in the box (Ericson 5.1.4), in f64.
+    pub fn overlaps_sphere(&self, sphere: &Sphere) -> bool {
+        let k = self.axes.as_dmat3().transpose()
+            * (sphere.center.as_dvec3() - self.center.as_dvec3());
+        let h = self.half_extents.as_dvec3();
+        (k - k.clamp(-h, h)).length_squared() <= (sphere.radius as f64).powi(2)
+    }
+
+    /// Where a ray enters the box (slab test in the box's frame): `Some(0.0)` if it
+    /// starts inside or on a face, `None` if it misses or would enter beyond `max_t`.
+    pub fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
+        let (o, d, max_t) = ray_f64(ray, max_t)?;
+        let at = self.axes.as_dmat3().transpose();
+        let (o, d) = (at * (o - self.center.as_dvec3()), at * d);
+        let h = self.half_extents.as_dvec3();
+        let mut clip = SlabClip::new(max_t);
+        for i in 0..3 {
+            if !clip.clip(o[i], d[i], -h[i], h[i]) {
+                return None;
+            }
+        }
+        Some(clip.entry())
+    }
+}

@@ -1,0 +1,2 @@
+//! bvol
+pub use bvol_volumes as volumes;
