@@ -56,3 +56,18 @@ pub fn references() -> Vec<Reference> {
         })
         .collect()
 }
+
+/// A uniformly random rotation (Shoemake, Graphics Gems III: uniform random rotations).
+pub fn random_rotation(rng: &mut impl rand::Rng) -> glam::Quat {
+    use rand::RngExt;
+    let (u1, u2, u3): (f32, f32, f32) = (rng.random(), rng.random(), rng.random());
+    let tau = std::f32::consts::TAU;
+    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
+    glam::Quat::from_xyzw(a * (tau * u2).sin(), a * (tau * u2).cos(), b * (tau * u3).sin(), b * (tau * u3).cos())
+        .normalize()
+}
+
+/// A uniformly random unit vector.
+pub fn random_unit(rng: &mut impl rand::Rng) -> Vec3 {
+    random_rotation(rng) * Vec3::Z
+}
