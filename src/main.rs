@@ -1,1 +1,18 @@
-fn main() {}
+//! The `bvol` command line: fit bounds to a mesh (and, later, benchmarks).
+
+mod cli;
+
+use std::process::ExitCode;
+
+use clap::Parser;
+
+fn main() -> ExitCode {
+    let args = cli::Args::parse();
+    match cli::run(args) {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("bvol: {message}");
+            ExitCode::from(2)
+        }
+    }
+}

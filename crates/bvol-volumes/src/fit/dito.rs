@@ -1,4 +1,191 @@
-//! STUB (helper replaces): DiTO-k.
+//! DiTO-k boxes (Larsson & Kallberg 2011, "Fast computation of tight-fitting
+//! oriented bounding boxes", Game Engine Gems 2, chapter 1).
+//!
+//! One pass finds the extreme points along `N` fixed slab directions. On those
+//! `2N` points alone: a large base triangle (the farthest pair of extremes and
+//! the extreme farthest from their line) and the two tetrahedra raised on it
+//! to the extremes farthest above and below its plane give up to seven
+//! triangles; each triangle's edges give three axis triples (edge, normal,
+//! their cross product). The triple whose box on the extremes has the least
+//! surface area wins, and its box over all points is kept unless the AABB's is
+//! no larger (the paper's final check). Cost: one pass for the extremes, two
+//! for the final box.
+
+use glam::{DMat3, DVec3, Vec3};
+
+use crate::directions::directions;
+use crate::obb::basis;
 use crate::Obb;
-use glam::Vec3;
-pub(crate) fn dito<const N: usize>(_points: &[Vec3]) -> Obb { todo!() }
+
+/// Relative distance below which a third point counts as on the base line, or
+/// a fourth as on the base plane (the paper's degenerate cases). It only has to
+/// keep normals away from rounding noise: f64 cross products of the exact
+/// differences of f32 points stay accurate far below it.
+const FLAT: f64 = 1e-9;
+
+/// The DiTO box with `N` slab directions: DiTO-14 for `N = 7`, DiTO-26 for `N = 13`.
+pub(crate) fn dito<const N: usize>(points: &[Vec3]) -> Obb {
+    let extremes = Extremes::<N>::of(points);
+    let aabb = DMat3::IDENTITY;
+    let axes = extremes.best_axes();
+    if axes == aabb {
+        return Obb::on_basis(aabb, points);
+    }
+    let obb = Obb::on_basis(axes, points);
+    let lengths = extremes.aabb_lengths();
+    if (obb.surface_area() as f64) < 2.0 * half_area(lengths) {
+        obb
+    } else {
+        Obb::on_basis(aabb, points)
+    }
+}
+
+/// The extreme points of a set along each slab direction.
+struct Extremes<const N: usize> {
+    /// Least and greatest projection on each direction.
+    lo: [f32; N],
+    hi: [f32; N],
+    /// The points that attain them.
+    lo_point: [DVec3; N],
+    hi_point: [DVec3; N],
+}
+
+impl<const N: usize> Extremes<N> {
+    /// One pass over the points. The projections onto directions with
+    /// components in {-1, 0, 1} are sums and differences of coordinates
+    /// (`project` compiles to just those), compared in f32: rounding can only
+    /// pick a near-extreme point instead, and the final box is refit on all
+    /// points anyway.
+    fn of(points: &[Vec3]) -> Self {
+        let dirs = const { directions::<N>() };
+        let (mut lo, mut hi) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
+        let (mut lo_at, mut hi_at) = ([0usize; N], [0usize; N]);
+        for (j, &p) in points.iter().enumerate() {
+            for i in 0..N {
+                let s = project(dirs[i], p);
+                if s < lo[i] {
+                    lo[i] = s;
+                    lo_at[i] = j;
+                }
+                if s > hi[i] {
+                    hi[i] = s;
+                    hi_at[i] = j;
+                }
+            }
+        }
+        let at = |j: usize| points[j].as_dvec3();
+        Extremes { lo, hi, lo_point: lo_at.map(at), hi_point: hi_at.map(at) }
+    }
+
+    /// The AABB's side lengths: the first three directions are the axes, whose
+    /// projections are the coordinates themselves, exact.
+    fn aabb_lengths(&self) -> DVec3 {
+        DVec3::new(
+            (self.hi[0] - self.lo[0]) as f64,
+            (self.hi[1] - self.lo[1]) as f64,
+            (self.hi[2] - self.lo[2]) as f64,
+        )
+    }
+
+    /// All `2N` extreme points.
+    fn points(&self) -> impl Iterator<Item = DVec3> + Clone + '_ {
+        self.lo_point.iter().chain(&self.hi_point).copied()
+    }
+
+    /// The best axis triple on the extremes, or the identity when the AABB's
+    /// axes do at least as well or all points coincide.
+    fn best_axes(&self) -> DMat3 {
+        let mut best = Best { axes: DMat3::IDENTITY, area: half_area(self.aabb_lengths()) };
+        // Base triangle, first edge: the farthest pair of extremes along one direction.
+        let Some((p0, p1)) = (0..N)
+            .map(|i| (self.lo_point[i], self.hi_point[i]))
+            .max_by(|a, b| a.0.distance_squared(a.1).total_cmp(&b.0.distance_squared(b.1)))
+        else {
+            return best.axes;
+        };
+        let length = p0.distance(p1);
+        if !(length > 0.0) {
+            return best.axes; // every point is the same: the AABB is exact
+        }
+        let e0 = (p1 - p0) / length;
+        // Third vertex: the extreme farthest from the line of p0 and p1.
+        let line_distance = |q: DVec3| (q - p0).cross(e0).length();
+        let p2 = farthest(self.points(), line_distance);
+        if line_distance(p2) <= FLAT * length {
+            // Degenerate case 2 of the paper: the extremes are collinear; align
+            // the box with the line, any perpendicular axes.
+            best.consider(self.points(), basis(e0, e0.any_orthonormal_vector()));
+            return best.axes;
+        }
+        best.triangle(self.points(), p0, p1, p2);
+        // The tetrahedra on the extremes farthest above and below the base plane;
+        // the paper skips one whose apex lies in the plane (flat input).
+        let n = (p1 - p0).cross(p2 - p0).normalize();
+        let height = |q: DVec3| (q - p0).dot(n);
+        for apex in [farthest(self.points(), height), farthest(self.points(), |q| -height(q))] {
+            if height(apex).abs() > FLAT * length {
+                best.triangle(self.points(), apex, p0, p1);
+                best.triangle(self.points(), apex, p1, p2);
+                best.triangle(self.points(), apex, p2, p0);
+            }
+        }
+        best.axes
+    }
+}
+
+/// The best axis triple so far and its box's half area on the extremes.
+struct Best {
+    axes: DMat3,
+    area: f64,
+}
+
+impl Best {
+    /// The three axis triples of a triangle: each edge, the normal, and their
+    /// cross product.
+    fn triangle<I: Iterator<Item = DVec3> + Clone>(&mut self, points: I, a: DVec3, b: DVec3, c: DVec3) {
+        let Some(n) = (b - a).cross(c - a).try_normalize() else { return };
+        for edge in [b - a, c - b, a - c] {
+            self.consider(points.clone(), basis(n, edge));
+        }
+    }
+
+    /// Keeps `axes` if their box on `points` has less area than the best so far.
+    fn consider<I: Iterator<Item = DVec3>>(&mut self, points: I, axes: DMat3) {
+        let at = axes.transpose();
+        let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
+            let k = at * p;
+            (lo.min(k), hi.max(k))
+        });
+        let area = half_area(hi - lo);
+        if area < self.area {
+            *self = Best { axes, area };
+        }
+    }
+}
+
+/// The point of `points` with the greatest `key` (the first of equals).
+fn farthest<I: Iterator<Item = DVec3>>(points: I, key: impl Fn(DVec3) -> f64) -> DVec3 {
+    points
+        .map(|p| (key(p), p))
+        .fold((f64::NEG_INFINITY, DVec3::ZERO), |best, c| if c.0 > best.0 { c } else { best })
+        .1
+}
+
+/// Half the surface area of a box with side lengths `l`: the paper's quality
+/// measure, which unlike volume still ranks flat boxes.
+fn half_area(l: DVec3) -> f64 {
+    l.x * l.y + l.y * l.z + l.z * l.x
+}
+
+/// `d . p` for a direction with components in {-1, 0, 1}: a sum of plus or minus
+/// coordinates. A zero component adds -0.0, the identity of f32 addition, so
+/// with `d` known at compile time only the needed additions remain.
+#[inline(always)]
+fn project(d: [i8; 3], p: Vec3) -> f32 {
+    let term = |c: i8, x: f32| match c {
+        1 => x,
+        -1 => -x,
+        _ => -0.0,
+    };
+    term(d[0], p.x) + term(d[1], p.y) + term(d[2], p.z)
+}

@@ -1,0 +1,35 @@
+//! Command-line arguments and dispatch.
+
+mod fit;
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+/// bvol: bounding volumes, broadphase and narrow phase for rigid bodies.
+#[derive(Parser, Debug)]
+#[command(name = "bvol", version, about)]
+pub struct Args {
+    #[command(subcommand)]
+    command: Command,
+}
+
+#[derive(Subcommand, Debug)]
+enum Command {
+    /// Fit every kind of bound by every method to a mesh's vertices and compare
+    /// them: size, ratio to the best of its kind, and time.
+    Fit {
+        /// The mesh, a Wavefront OBJ file (every object's vertices are used).
+        mesh: PathBuf,
+        /// Print a JSON array, one object per result, bound included.
+        #[arg(long)]
+        json: bool,
+    },
+}
+
+/// Runs a command; the error is one line for the user.
+pub fn run(args: Args) -> Result<(), String> {
+    match args.command {
+        Command::Fit { mesh, json } => fit::run(&mesh, json),
+    }
+}
