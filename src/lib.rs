@@ -18,7 +18,12 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod digest;
 mod mesh;
+pub mod scenes;
+mod trace;
 
 pub use bvol_volumes as volumes;
+pub use digest::PairDigest;
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
+pub use trace::{BoxTrace, TraceError};

@@ -66,7 +66,11 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
 
 fn kdop<const N: usize>(points: &[Vec3]) -> Result<Fitted, FitError> {
     let (k, micros) = timed(|| Kdop::<N>::fit(points))?;
-    let bound = json!({ "directions": Kdop::<N>::DIRECTIONS, "min": k.min, "max": k.max });
+    let bound = json!({
+        "directions": Kdop::<N>::DIRECTIONS.as_slice(),
+        "min": k.min.as_slice(),
+        "max": k.max.as_slice(),
+    });
     let method = format!("{}-dop", 2 * N);
     Ok(Fitted { kind: "kdop", method, radius: None, volume: k.volume() as f64, micros, bound })
 }

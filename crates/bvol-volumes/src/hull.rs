@@ -1,32 +1,319 @@
-//! STUB (helper replaces): 3-D convex hull (quickhull).
+//! The 3-D convex hull: quickhull (Barber, Dobkin & Huhdanpaa 1996) with exact
+//! orientation signs for its topology, then coplanar triangles merged into convex
+//! polygon faces; flat, collinear and single-point sets get their own hulls.
+//!
+//! Input points are f32, so their positions carry a relative error of about
+//! 2^-24 of the set's size: faces coplanar to that precision are one face, and a
+//! point that close to the hull is not a vertex. That tolerance is relative to
+//! the set's extent about its box centre (qhull's `3 * maxabs_sum * epsilon`,
+//! with f32's epsilon and centred coordinates), so the same shape scaled or moved
+//! gives the same faces. The exact signs (Shewchuk's predicates, on the f32
+//! values held exactly in f64) keep every intermediate hull a closed manifold,
+//! so no input, however degenerate, can break it.
+
+mod merge;
+mod planar;
+mod predicates;
+mod quickhull;
+
 use glam::{DVec3, Vec3};
+
 use crate::FitError;
 
-/// A convex hull.
+/// A point set seen from its box centre, with its distance tolerance.
+struct Frame<'a> {
+    points: &'a [Vec3],
+    centre: DVec3,
+    /// Distances below this are noise of the f32 input.
+    eps: f64,
+}
+
+impl<'a> Frame<'a> {
+    /// The frame of a non-empty set of finite points.
+    fn new(points: &'a [Vec3]) -> Self {
+        let (lo, hi) = points
+            .iter()
+            .fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
+        let half = (hi - lo) * 0.5;
+        let eps = 3.0 * (half.x + half.y + half.z) * f64::from(f32::EPSILON);
+        Frame { points, centre: (lo + hi) * 0.5, eps }
+    }
+
+    /// Point `i` relative to the centre: rounded, for plane distances.
+    fn at(&self, i: u32) -> DVec3 {
+        self.points[i as usize].as_dvec3() - self.centre
+    }
+
+    /// Point `i` as given, exact in f64: for the orientation predicate.
+    fn exact(&self, i: u32) -> DVec3 {
+        self.points[i as usize].as_dvec3()
+    }
+
+    /// The point with the greatest `measure` of its centred position (first on ties).
+    fn farthest(&self, measure: impl Fn(DVec3) -> f64) -> (u32, f64) {
+        (0..self.points.len() as u32)
+            .map(|i| (i, measure(self.at(i))))
+            .fold((0, f64::NEG_INFINITY), |best, x| if x.1 > best.1 { x } else { best })
+    }
+}
+
+/// The convex hull of a point set, in a flat, data-oriented layout: the vertices
+/// (input points, each once), the faces as index loops into them with their unit
+/// outward normals and plane offsets.
+///
+/// A solid hull's faces are convex polygons, coplanar triangles merged, each
+/// counter-clockwise seen from outside; every edge lies in exactly two faces, in
+/// opposite directions, and `V - E + F = 2`. A flat hull has two faces, its
+/// polygon seen from each side. Segments and single points have no faces.
+///
+/// ```
+/// use bvol_volumes::ConvexHull;
+/// use glam::Vec3;
+/// let mut points: Vec<Vec3> = (0..8)
+///     .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32))
+///     .collect();
+/// points.push(Vec3::splat(0.5)); // inside
+/// let hull = ConvexHull::new(&points)?;
+/// assert_eq!((hull.dimension(), hull.vertices().len(), hull.face_count()), (3, 8, 6));
+/// assert!((hull.volume() - 1.0).abs() < 1e-12 && (hull.surface_area() - 6.0).abs() < 1e-12);
+/// # Ok::<(), bvol_volumes::FitError>(())
+/// ```
 #[derive(Clone, Debug)]
 pub struct ConvexHull {
     vertices: Vec<Vec3>,
+    /// Face loops, concatenated; face `f` is `face_vertices[face_starts[f]..face_starts[f + 1]]`.
+    face_vertices: Vec<u32>,
+    face_starts: Vec<u32>,
+    normals: Vec<DVec3>,
+    offsets: Vec<f64>,
+    dimension: u8,
+    tolerance: f64,
 }
 
 impl ConvexHull {
-    /// Builds the hull.
-    pub fn new(_points: &[Vec3]) -> Result<ConvexHull, FitError> { todo!() }
-    /// 0 point, 1 segment, 2 polygon, 3 solid.
-    pub fn dimension(&self) -> u8 { todo!() }
-    /// Hull vertices.
-    pub fn vertices(&self) -> &[Vec3] { &self.vertices }
-    /// Number of faces.
-    pub fn face_count(&self) -> usize { todo!() }
-    /// Face polygon.
-    pub fn face(&self, _i: usize) -> &[u32] { todo!() }
-    /// Face normal.
-    pub fn face_normal(&self, _i: usize) -> DVec3 { todo!() }
-    /// Triangles.
-    pub fn triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ { std::iter::empty() }
-    /// Edges.
-    pub fn edges(&self) -> impl Iterator<Item = [u32; 2]> + '_ { std::iter::empty() }
-    /// Volume.
-    pub fn volume(&self) -> f64 { todo!() }
-    /// Area.
-    pub fn surface_area(&self) -> f64 { todo!() }
+    /// Builds the hull of a point set.
+    ///
+    /// Empty input is [`FitError::Empty`]; a NaN or infinite coordinate is
+    /// [`FitError::NonFinite`]. Any finite set gives a hull: solid, flat (all
+    /// points within [`tolerance`](Self::tolerance) of a plane), a segment, or
+    /// one point.
+    pub fn new(points: &[Vec3]) -> Result<ConvexHull, FitError> {
+        crate::fit::check(points)?;
+        let frame = Frame::new(points);
+        // Initial simplex from extreme points (Barber et al. section 3): the
+        // widest pair of axis extremes, the point farthest from their line, then
+        // the point farthest from that plane. Each that is within tolerance
+        // lowers the dimension.
+        let (a, b) = widest_axis_extremes(&frame);
+        let (pa, pb) = (frame.at(a), frame.at(b));
+        let Some(axis) = (pb - pa).try_normalize().filter(|_| pa.distance(pb) > frame.eps) else {
+            return Ok(Self::point(&frame, a));
+        };
+        let (c, off_line) = frame.farthest(|p| (p - pa).cross(axis).length());
+        if off_line <= frame.eps {
+            return Ok(Self::segment(&frame, axis));
+        }
+        let normal = axis.cross(frame.at(c) - pa).normalize();
+        let (d, off_plane) = frame.farthest(|p| normal.dot(p - pa).abs());
+        if off_plane <= frame.eps {
+            return Ok(Self::flat(&frame, normal, axis));
+        }
+        match quickhull::triangulate(&frame, [a, b, c, d]) {
+            Some(tris) => {
+                let faces = merge::merge(&frame, &tris);
+                if faces.len() >= 4 {
+                    return Ok(Self::solid(&frame, &tris.vertices, &faces));
+                }
+                // Merging within tolerance left a sliver with two sides: it is flat.
+                Ok(Self::flat(&frame, normal, axis))
+            }
+            None => Ok(Self::flat(&frame, normal, axis)),
+        }
+    }
+
+    /// The hull of a set whose points all coincide.
+    fn point(frame: &Frame, i: u32) -> Self {
+        Self::assemble(frame, 0, vec![i], &[], &[])
+    }
+
+    /// The hull of a set within tolerance of a line along `axis`: its two ends.
+    fn segment(frame: &Frame, axis: DVec3) -> Self {
+        let (hi, _) = frame.farthest(|p| p.dot(axis));
+        let (lo, _) = frame.farthest(|p| -p.dot(axis));
+        let mut ends = vec![lo.min(hi), lo.max(hi)];
+        ends.dedup();
+        Self::assemble(frame, 1, ends, &[], &[])
+    }
+
+    /// The hull of a set within tolerance of a plane with unit `normal`: its
+    /// polygon, once facing `normal` and once facing away.
+    fn flat(frame: &Frame, normal: DVec3, axis: DVec3) -> Self {
+        let ring = planar::polygon(frame, normal, axis);
+        if ring.len() < 3 {
+            return Self::segment(frame, axis);
+        }
+        let back: Vec<u32> = ring.iter().rev().copied().collect();
+        let n = ring.len() as u32;
+        let mut vertices = ring.clone();
+        vertices.sort_unstable();
+        let local = |i: &u32| vertices.binary_search(i).unwrap_or(0) as u32;
+        let loops: Vec<u32> = ring.iter().chain(&back).map(local).collect();
+        Self::assemble(frame, 2, vertices, &loops, &[0, n, 2 * n])
+    }
+
+    /// A solid hull from the merged faces over the triangulation's vertices
+    /// (input indices, ascending); vertices no face uses are left out.
+    fn solid(frame: &Frame, tri_vertices: &[u32], faces: &merge::Polygons) -> Self {
+        let mut used: Vec<u32> = faces.loops.clone();
+        used.sort_unstable();
+        used.dedup();
+        let vertices: Vec<u32> = used.iter().map(|&v| tri_vertices[v as usize]).collect();
+        let loops: Vec<u32> =
+            faces.loops.iter().map(|v| used.binary_search(v).unwrap_or(0) as u32).collect();
+        Self::assemble(frame, 3, vertices, &loops, &faces.starts)
+    }
+
+    /// The hull from its vertices (input indices, ascending) and face loops
+    /// (indices into them); computes each face's plane (Newell's normal, offset
+    /// through the mean of its vertices).
+    fn assemble(frame: &Frame, dimension: u8, vertices: Vec<u32>, loops: &[u32], starts: &[u32]) -> Self {
+        let mut hull = ConvexHull {
+            vertices: vertices.iter().map(|&i| frame.points[i as usize]).collect(),
+            face_vertices: loops.to_vec(),
+            face_starts: if starts.is_empty() { vec![0] } else { starts.to_vec() },
+            normals: Vec::new(),
+            offsets: Vec::new(),
+            dimension,
+            tolerance: frame.eps,
+        };
+        let pos: Vec<DVec3> = vertices.iter().map(|&i| frame.at(i)).collect();
+        for f in 0..hull.face_count() {
+            let face: Vec<DVec3> = hull.face(f).iter().map(|&v| pos[v as usize]).collect();
+            let o = face[0];
+            let normal = face
+                .windows(2)
+                .fold(DVec3::ZERO, |n, w| n + (w[0] - o).cross(w[1] - o))
+                .normalize_or_zero();
+            let mean = face.iter().sum::<DVec3>() / face.len() as f64;
+            hull.normals.push(normal);
+            hull.offsets.push(normal.dot(mean + frame.centre));
+        }
+        hull
+    }
+
+    /// 0 for a single point (all input points equal), 1 for a segment (collinear
+    /// within tolerance), 2 for a flat polygon (coplanar within tolerance), 3 for
+    /// a solid.
+    pub fn dimension(&self) -> u8 {
+        self.dimension
+    }
+
+    /// The hull's vertices: exact copies of input points, each once, in the
+    /// order of their first appearance in the input.
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
+    /// Number of faces: the convex polygons of a solid, 2 for a flat hull (one
+    /// per side), 0 for a segment or a point.
+    pub fn face_count(&self) -> usize {
+        self.face_starts.len() - 1
+    }
+
+    /// Vertex indices (into [`vertices`](Self::vertices)) of face `i`,
+    /// counter-clockwise seen from outside (looking against the normal).
+    ///
+    /// Panics if `i >= face_count()`.
+    pub fn face(&self, i: usize) -> &[u32] {
+        &self.face_vertices[self.face_starts[i] as usize..self.face_starts[i + 1] as usize]
+    }
+
+    /// Unit outward normal of face `i`, fitted to all its vertices (Newell).
+    ///
+    /// Panics if `i >= face_count()`.
+    pub fn face_normal(&self, i: usize) -> DVec3 {
+        self.normals[i]
+    }
+
+    /// Offset of face `i`'s plane: `face_normal(i) . x` for `x` on the face
+    /// (the mean over its vertices). Every input point `p` has
+    /// `face_normal(i) . p - face_offset(i) <= tolerance()` up to rounding.
+    ///
+    /// Panics if `i >= face_count()`.
+    pub fn face_offset(&self, i: usize) -> f64 {
+        self.offsets[i]
+    }
+
+    /// The distance tolerance the hull was built with: `3 * f32::EPSILON` times
+    /// the sum of the set's half extents along the axes. Points closer than this
+    /// to a face plane count as on it.
+    pub fn tolerance(&self) -> f64 {
+        self.tolerance
+    }
+
+    /// Fan triangulation of every face, counter-clockwise from outside.
+    pub fn triangles(&self) -> impl Iterator<Item = [u32; 3]> + '_ {
+        (0..self.face_count()).flat_map(move |f| {
+            let face = self.face(f);
+            face.windows(2).skip(1).map(move |w| [face[0], w[0], w[1]])
+        })
+    }
+
+    /// Each undirected edge once, as `[a, b]` with `a < b`: the one segment of
+    /// a 1-D hull, none for a point.
+    pub fn edges(&self) -> impl Iterator<Item = [u32; 2]> + '_ {
+        // Every edge of a solid or flat hull runs once each way round the faces.
+        let segment = (self.dimension == 1).then_some([0, 1]);
+        (0..self.face_count())
+            .flat_map(move |f| {
+                let face = self.face(f);
+                (0..face.len()).map(move |k| [face[k], face[(k + 1) % face.len()]])
+            })
+            .filter(|[a, b]| a < b)
+            .chain(segment)
+    }
+
+    /// Number of undirected edges: `edges().count()`, without walking them.
+    pub fn edge_count(&self) -> usize {
+        if self.dimension == 1 { 1 } else { self.face_vertices.len() / 2 }
+    }
+
+    /// Enclosed volume, 0 unless the hull is solid: the tetrahedra from the
+    /// first vertex to every face triangle, in f64.
+    pub fn volume(&self) -> f64 {
+        if self.dimension < 3 {
+            return 0.0;
+        }
+        let o = self.vertices[0].as_dvec3();
+        let at = |v: u32| self.vertices[v as usize].as_dvec3() - o;
+        self.triangles().map(|[a, b, c]| at(a).dot(at(b).cross(at(c)))).sum::<f64>() / 6.0
+    }
+
+    /// Surface area, in f64; a flat hull counts both sides (twice its polygon).
+    pub fn surface_area(&self) -> f64 {
+        let at = |v: u32| self.vertices[v as usize].as_dvec3();
+        self.triangles()
+            .map(|[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length())
+            .sum::<f64>()
+            / 2.0
+    }
+}
+
+/// The farthest apart pair among the points with the least and greatest
+/// coordinate on each axis (first on ties).
+fn widest_axis_extremes(frame: &Frame) -> (u32, u32) {
+    let extremes: Vec<u32> = (0..3)
+        .flat_map(|k| [frame.farthest(|p| -p[k]).0, frame.farthest(|p| p[k]).0])
+        .collect();
+    let mut best = (extremes[0], extremes[0], -1.0);
+    for (i, &a) in extremes.iter().enumerate() {
+        for &b in &extremes[i + 1..] {
+            let d = frame.at(a).distance_squared(frame.at(b));
+            if d > best.2 {
+                best = (a, b, d);
+            }
+        }
+    }
+    (best.0, best.1)
 }

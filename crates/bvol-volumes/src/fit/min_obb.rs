@@ -1,4 +1,389 @@
-//! STUB (helper replaces): near-minimum-volume box.
-use crate::Obb;
-use glam::Vec3;
-pub(crate) fn min_volume(_points: &[Vec3]) -> Obb { todo!() }
+//! Near-minimum-volume boxes on the convex hull.
+//!
+//! A box is fixed by one unit axis `n` and its rotation about `n`. For a given
+//! `n` the best rotation is the minimum-area rectangle around the hull's
+//! shadow on the plane of `n` (see `min_rect`), so the volume becomes a
+//! function of `n` alone, `V(n) = height(n) * rect(n)`, over two degrees of
+//! freedom. It is sampled at the candidates that the exact algorithms
+//! enumerate, and the best few are polished by local descent:
+//!
+//! - a box face flush with each hull face (`n` a face normal; the optimum when
+//!   some box face is flush with a hull face);
+//! - two opposite box faces flush with two hull edges (`n = e1 x e2` for edges
+//!   whose Gauss-map arcs are antipodal: one edge on the top support plane,
+//!   the other on the bottom one). O'Rourke (1985, "Finding minimal enclosing
+//!   boxes") shows that minimal boxes have faces flush with hull edges where no
+//!   face is flush with a hull face; the regular tetrahedron, whose optimum is
+//!   its circumscribed cube, is found only this way;
+//! - the axes of the PCA-hull and DiTO boxes;
+//! - Nelder-Mead descent on `V(n)` (Nelder & Mead 1965) from the best few,
+//!   cycling `n` through the three axes of the current box, so that each box
+//!   axis in turn gets its rotation optimised: a descent over all three degrees
+//!   of freedom of a rotation.
+//!
+//! The result is never worse than the PCA-hull or DiTO boxes of the same input:
+//! those are compared last, as the f32 boxes they are.
+
+use glam::{DMat3, DVec2, DVec3, Vec3};
+
+use super::min_rect::min_area_rect;
+use super::{dito::dito, pca::hull_axes};
+use crate::obb::basis;
+use crate::{ConvexHull, Obb};
+
+/// How many of the best candidates are polished.
+const POLISHED: usize = 4;
+
+/// A bound on the work of the edge-pair search, in face and edge tests: every
+/// pair of edges while the hull is small, the longest first edges against all
+/// others on large hulls.
+const PAIR_WORK: usize = 1 << 21;
+
+/// Nelder-Mead's first step, in radians: a few degrees, about the reach of one
+/// candidate's basin.
+const FIRST_STEP: f64 = 0.05;
+
+/// Nelder-Mead stops when its simplex is this small, in radians: far below any
+/// volume change that f32 boxes can show.
+const LAST_STEP: f64 = 1e-9;
+
+/// A bound on function evaluations per descent.
+const MAX_EVALS: usize = 160;
+
+/// Rounds of cycling the descent through the three axes of the best box.
+const MAX_ROUNDS: usize = 4;
+
+/// The near-minimum-volume box.
+pub(crate) fn min_volume(points: &[Vec3]) -> Obb {
+    let Ok(hull) = ConvexHull::new(points) else {
+        // Checked input always has a hull; keep a fast fit should that change.
+        return dito::<13>(points);
+    };
+    let pca = hull_axes(&hull);
+    let baselines = [Obb::on_basis(pca, points), dito::<7>(points), dito::<13>(points)];
+    let axes = match hull.dimension() {
+        3 => search(&hull, &baselines),
+        2 => flat_axes(&hull, pca.z_axis),
+        // A segment or a point: the principal axis runs along it.
+        _ => pca,
+    };
+    let searched = Obb::on_basis(axes, points);
+    baselines.into_iter().fold(searched, |best, b| if b.volume() < best.volume() { b } else { best })
+}
+
+/// The box of a flat hull: its plane's normal, and the minimum-area rectangle
+/// of its vertices in that plane.
+fn flat_axes(hull: &ConvexHull, normal: DVec3) -> DMat3 {
+    let (t1, t2) = normal.any_orthonormal_pair();
+    let mut flat: Vec<DVec2> =
+        hull.vertices().iter().map(|p| DVec2::new(p.as_dvec3().dot(t1), p.as_dvec3().dot(t2))).collect();
+    let rect = min_area_rect(&mut flat, &mut Vec::new());
+    basis(normal, t1 * rect.side.x + t2 * rect.side.y)
+}
+
+/// The axes of the best box found on a solid hull: candidates, then descent.
+fn search(hull: &ConvexHull, baselines: &[Obb]) -> DMat3 {
+    let shape = Shape::new(hull);
+    let mut eval = Evaluator::new(&shape);
+    let mut best = Best::default();
+    // Baselines first: they are good, and make the pruning bound tight early.
+    for axes in baselines.iter().map(|b| b.axes.as_dmat3()) {
+        for j in 0..3 {
+            best.offer(eval.box_along(axes.col(j), f64::INFINITY));
+        }
+    }
+    for &n in &shape.normals {
+        best.offer(eval.box_along(n, best.bound()));
+    }
+    edge_pairs(&shape, |n| best.offer(eval.box_along(n, best.bound())));
+    best.kept
+        .iter()
+        .map(|&c| polish(&mut eval, c))
+        .fold(None::<Candidate>, |b, c| match b {
+            Some(b) if b.volume <= c.volume => Some(b),
+            _ => Some(c),
+        })
+        .map_or(DMat3::IDENTITY, |c| c.axes)
+}
+
+/// A convex hull as the search reads it, in f64 about the mean of its
+/// vertices: unit outward face normals, face areas, and each edge with the two
+/// faces that meet there.
+struct Shape {
+    vertices: Vec<DVec3>,
+    normals: Vec<DVec3>,
+    areas: Vec<f64>,
+    edges: Vec<Edge>,
+}
+
+/// An edge of the hull: its two vertices, and the faces on either side.
+#[derive(Clone, Copy)]
+struct Edge {
+    ends: [u32; 2],
+    faces: [u32; 2],
+}
+
+impl Shape {
+    fn new(hull: &ConvexHull) -> Shape {
+        let raw = hull.vertices();
+        let origin = raw.iter().fold(DVec3::ZERO, |s, p| s + p.as_dvec3()) / raw.len() as f64;
+        let vertices: Vec<DVec3> = raw.iter().map(|p| p.as_dvec3() - origin).collect();
+        let faces = hull.face_count();
+        let normals: Vec<DVec3> = (0..faces).map(|f| hull.face_normal(f)).collect();
+        // Newell's formula: twice the area vector is the sum of cross products
+        // of consecutive vertices.
+        let areas = (0..faces)
+            .map(|f| {
+                let ring = hull.face(f);
+                let twice = ring.iter().zip(ring.iter().cycle().skip(1)).fold(DVec3::ZERO, |s, (&a, &b)| {
+                    s + vertices[a as usize].cross(vertices[b as usize])
+                });
+                0.5 * twice.dot(normals[f]).abs()
+            })
+            .collect();
+        Shape { edges: edges(hull), vertices, normals, areas }
+    }
+
+    /// The unit direction and length of an edge.
+    fn edge_vector(&self, e: &Edge) -> DVec3 {
+        self.vertices[e.ends[1] as usize] - self.vertices[e.ends[0] as usize]
+    }
+}
+
+/// The edges of the hull's faces, each with the two faces it borders: the
+/// sides of every face polygon, matched in sorted order. A side that is not
+/// shared by exactly two faces (which a closed hull never has) is left out.
+fn edges(hull: &ConvexHull) -> Vec<Edge> {
+    let mut sides: Vec<([u32; 2], u32)> = (0..hull.face_count())
+        .flat_map(|f| {
+            let ring = hull.face(f);
+            ring.iter()
+                .zip(ring.iter().cycle().skip(1))
+                .map(move |(&a, &b)| ([a.min(b), a.max(b)], f as u32))
+        })
+        .collect();
+    sides.sort_unstable();
+    sides
+        .chunk_by(|x, y| x.0 == y.0)
+        .filter_map(|c| match c {
+            [(ends, f), (_, g)] => Some(Edge { ends: *ends, faces: [*f, *g] }),
+            _ => None,
+        })
+        .collect()
+}
+
+/// A box: its volume in f64 and its axes, the first the `n` it was fitted along.
+#[derive(Clone, Copy, Debug)]
+struct Candidate {
+    volume: f64,
+    axes: DMat3,
+}
+
+/// The best few distinct candidates so far, least volume first.
+#[derive(Default)]
+struct Best {
+    kept: Vec<Candidate>,
+}
+
+impl Best {
+    /// The volume a candidate must beat to be kept.
+    fn bound(&self) -> f64 {
+        if self.kept.len() < POLISHED { f64::INFINITY } else { self.kept[POLISHED - 1].volume }
+    }
+
+    /// Keeps a candidate that beats the bound, unless one of the same volume
+    /// (to rounding: most likely the same box, found twice) is kept already.
+    fn offer(&mut self, c: Option<Candidate>) {
+        let Some(c) = c.filter(|c| c.volume < self.bound()) else { return };
+        if self.kept.iter().any(|k| (k.volume - c.volume).abs() <= 1e-9 * c.volume) {
+            return;
+        }
+        let at = self.kept.partition_point(|k| k.volume <= c.volume);
+        self.kept.insert(at, c);
+        self.kept.truncate(POLISHED);
+    }
+}
+
+/// Evaluates `V(n)` on a shape, with scratch space reused between calls.
+struct Evaluator<'a> {
+    shape: &'a Shape,
+    /// Whether each face faces along `n`.
+    front: Vec<bool>,
+    /// When each vertex was last put in the shadow, to put it in once.
+    stamp: Vec<u32>,
+    call: u32,
+    /// The silhouette vertices projected on the plane of `n`, and their hull.
+    shadow: Vec<DVec2>,
+    ring: Vec<DVec2>,
+}
+
+impl<'a> Evaluator<'a> {
+    fn new(shape: &'a Shape) -> Self {
+        Evaluator {
+            shape,
+            front: vec![false; shape.normals.len()],
+            stamp: vec![0; shape.vertices.len()],
+            call: 0,
+            shadow: Vec::new(),
+            ring: Vec::new(),
+        }
+    }
+
+    /// The least-volume box with `n` (unit) as an axis, or `None` when it
+    /// cannot have less volume than `bound`. The rectangle encloses the hull's
+    /// shadow, whose area (half the sum of `|n . normal| area` over the faces)
+    /// gives a bound cheaper than the rectangle.
+    fn box_along(&mut self, n: DVec3, bound: f64) -> Option<Candidate> {
+        let s = self.shape;
+        let (lo, hi) = s.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+            let k = v.dot(n);
+            (lo.min(k), hi.max(k))
+        });
+        let height = hi - lo;
+        let mut shadow_area = 0.0;
+        for ((front, normal), area) in self.front.iter_mut().zip(&s.normals).zip(&s.areas) {
+            let k = normal.dot(n);
+            *front = k > 0.0;
+            shadow_area += k.abs() * area;
+        }
+        if height * 0.5 * shadow_area >= bound {
+            return None;
+        }
+        // The shadow's outline comes from the silhouette: edges between a face
+        // facing along n and one that does not. Every vertex of the shadow's
+        // hull is on it, a small fraction of the vertices.
+        let (t1, t2) = n.any_orthonormal_pair();
+        self.call = self.call.wrapping_add(1);
+        self.shadow.clear();
+        for e in &s.edges {
+            if self.front[e.faces[0] as usize] == self.front[e.faces[1] as usize] {
+                continue;
+            }
+            for v in e.ends {
+                if std::mem::replace(&mut self.stamp[v as usize], self.call) != self.call {
+                    let p = s.vertices[v as usize];
+                    self.shadow.push(DVec2::new(p.dot(t1), p.dot(t2)));
+                }
+            }
+        }
+        let rect = min_area_rect(&mut self.shadow, &mut self.ring);
+        let axes = basis(n, t1 * rect.side.x + t2 * rect.side.y);
+        Some(Candidate { volume: height * rect.area, axes })
+    }
+
+    /// `V(n)` and its box, never pruned.
+    fn fit(&mut self, n: DVec3) -> Candidate {
+        self.box_along(n, f64::INFINITY).unwrap_or(Candidate { volume: f64::INFINITY, axes: basis(n, DVec3::ZERO) })
+    }
+}
+
+/// Visits `n = e1 x e2` for every pair of hull edges with antipodal Gauss-map
+/// arcs: `n` on the arc of `e1` (between its faces' normals) and `-n` on that
+/// of `e2`, so that the support planes of normal `n` and `-n` hold `e1` and
+/// `e2`. The arc test is Gregorius's (GDC 2013, "The Separating Axis Test
+/// between Convex Polyhedra"), on arcs `(a, b)` and `(-c, -d)`. The first
+/// part, which rejects most pairs, is a sign test per face, done once per
+/// first edge.
+fn edge_pairs(shape: &Shape, mut visit: impl FnMut(DVec3)) {
+    let (nf, ne) = (shape.normals.len(), shape.edges.len());
+    let every_pair = ne * (nf + ne) / 2 <= PAIR_WORK;
+    let mut firsts: Vec<usize> = (0..ne).collect();
+    if !every_pair {
+        let length = |i: &usize| shape.edge_vector(&shape.edges[*i]).length_squared();
+        firsts.sort_by(|i, j| length(j).total_cmp(&length(i)).then(i.cmp(j)));
+        firsts.truncate(PAIR_WORK / (nf + ne).max(1));
+    }
+    let mut side = vec![0.0; nf];
+    let normal = |f: u32| shape.normals[f as usize];
+    for i in firsts {
+        let e1 = shape.edges[i];
+        let (a, b) = (normal(e1.faces[0]), normal(e1.faces[1]));
+        let bxa = b.cross(a);
+        for (s, n) in side.iter_mut().zip(&shape.normals) {
+            *s = n.dot(bxa);
+        }
+        let d1 = shape.edge_vector(&e1);
+        let seconds = if every_pair { i + 1..ne } else { 0..ne };
+        for e2 in &shape.edges[seconds] {
+            // side = n . (b x a) = -(c . (b x a)) for c the negated normal.
+            let (sc, sd) = (side[e2.faces[0] as usize], side[e2.faces[1] as usize]);
+            if sc * sd >= 0.0 {
+                continue;
+            }
+            let dxc = normal(e2.faces[1]).cross(normal(e2.faces[0])); // (-d) x (-c)
+            let (adc, bdc) = (a.dot(dxc), b.dot(dxc));
+            if adc * bdc < 0.0 && -sc * bdc > 0.0 {
+                if let Some(n) = d1.cross(shape.edge_vector(e2)).try_normalize() {
+                    visit(n);
+                }
+            }
+        }
+    }
+}
+
+/// Local descent from a candidate: Nelder-Mead on `V(n)` about each of its
+/// axes in turn, until a round gains nothing.
+fn polish(eval: &mut Evaluator, start: Candidate) -> Candidate {
+    let mut best = start;
+    for _ in 0..MAX_ROUNDS {
+        let before = best.volume;
+        for j in 0..3 {
+            best = descend(eval, best.axes.col(j), best);
+        }
+        if !(best.volume < before * (1.0 - 1e-9)) {
+            break;
+        }
+    }
+    best
+}
+
+/// Nelder-Mead on `V(n)` near `n0`, over the tangent plane: `n = normalize(n0 +
+/// x t1 + y t2)`. Returns the better of its result and `best`.
+fn descend(eval: &mut Evaluator, n0: DVec3, best: Candidate) -> Candidate {
+    let (t1, t2) = n0.any_orthonormal_pair();
+    let along = |x: DVec2| (n0 + t1 * x.x + t2 * x.y).normalize();
+    let x = nelder_mead(|x| eval.fit(along(x)).volume, FIRST_STEP, LAST_STEP, MAX_EVALS);
+    let c = eval.fit(along(x));
+    if c.volume < best.volume { c } else { best }
+}
+
+/// Minimises `f` over the plane from the origin by Nelder-Mead (Nelder & Mead
+/// 1965, with the usual coefficients: reflect 1, expand 2, contract and shrink
+/// 1/2), until the simplex is smaller than `last` or `max_evals` are spent.
+fn nelder_mead(mut f: impl FnMut(DVec2) -> f64, first: f64, last: f64, max_evals: usize) -> DVec2 {
+    let mut s = [DVec2::ZERO, DVec2::new(first, 0.0), DVec2::new(0.0, first)].map(|x| (x, f(x)));
+    let mut evals = 3;
+    while evals < max_evals {
+        s.sort_by(|a, b| a.1.total_cmp(&b.1));
+        if (s[1].0 - s[0].0).length().max((s[2].0 - s[0].0).length()) < last {
+            break;
+        }
+        let centre = (s[0].0 + s[1].0) * 0.5;
+        let worst = s[2];
+        let mut probe = |t: f64| {
+            evals += 1;
+            let x = centre + (centre - worst.0) * t;
+            (x, f(x))
+        };
+        let r = probe(1.0);
+        if r.1 < s[0].1 {
+            let e = probe(2.0);
+            s[2] = if e.1 < r.1 { e } else { r };
+        } else if r.1 < s[1].1 {
+            s[2] = r;
+        } else {
+            // Contract toward the better of the reflected and the worst point.
+            let c = probe(if r.1 < worst.1 { 0.5 } else { -0.5 });
+            if c.1 < r.1.min(worst.1) {
+                s[2] = c;
+            } else {
+                for k in 1..3 {
+                    let x = (s[0].0 + s[k].0) * 0.5;
+                    s[k] = (x, f(x));
+                }
+                evals += 2;
+            }
+        }
+    }
+    s.iter().min_by(|a, b| a.1.total_cmp(&b.1)).map_or(DVec2::ZERO, |b| b.0)
+}

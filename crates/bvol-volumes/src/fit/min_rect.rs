@@ -90,3 +90,66 @@ pub(crate) fn calipers(hull: &[DVec2]) -> Rect {
     }
     if best.area.is_finite() { best } else { Rect { area: 0.0, side: DVec2::X } }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use proptest::prelude::*;
+
+    /// The area of the rectangle with a side along `u` (unit) around `points`.
+    fn area_along(points: &[DVec2], u: DVec2) -> f64 {
+        let range = |d: DVec2| {
+            let k = points.iter().map(|p| p.dot(d));
+            k.clone().fold(f64::NEG_INFINITY, f64::max) - k.fold(f64::INFINITY, f64::min)
+        };
+        range(u) * range(u.perp())
+    }
+
+    fn points(max: usize) -> impl Strategy<Value = Vec<DVec2>> {
+        prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0).prop_map(|(x, y)| DVec2::new(x, y)), 1..max)
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig::with_cases(2000))]
+
+        /// Against brute force: some minimum rectangle is flush with the line of
+        /// two of the points, so the least area over all pairs is the optimum.
+        #[test]
+        fn matches_brute_force(points in points(40), snap in any::<bool>()) {
+            // Snapped to a coarse grid: duplicates and collinear runs.
+            let points: Vec<DVec2> =
+                if snap { points.iter().map(|p| (*p * 4.0).round()).collect() } else { points };
+            let mut brute = f64::INFINITY;
+            for a in &points {
+                for b in &points {
+                    if let Some(u) = (*b - *a).try_normalize() {
+                        brute = brute.min(area_along(&points, u));
+                    }
+                }
+            }
+            let rect = min_area_rect(&mut points.clone(), &mut Vec::new());
+            if brute.is_finite() {
+                prop_assert!((rect.area - brute).abs() <= 1e-12 + 1e-9 * brute, "{} vs {brute}", rect.area);
+            } else {
+                prop_assert_eq!(rect.area, 0.0); // every point the same
+            }
+            prop_assert!((rect.side.length() - 1.0).abs() < 1e-12);
+            let along = area_along(&points, rect.side);
+            prop_assert!((along - rect.area).abs() <= 1e-12 + 1e-9 * along, "{along} vs {}", rect.area);
+        }
+
+        /// The hull is convex, counter-clockwise, made of input points, and holds them all.
+        #[test]
+        fn hull_holds_every_point(points in points(60)) {
+            let mut hull = Vec::new();
+            convex_hull(&mut points.clone(), &mut hull);
+            prop_assert!(hull.iter().all(|h| points.contains(h)));
+            for i in 0..hull.len() {
+                let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
+                for p in &points {
+                    prop_assert!((b - a).perp_dot(*p - a) >= -1e-12, "{p} right of {a} {b}");
+                }
+            }
+        }
+    }
+}

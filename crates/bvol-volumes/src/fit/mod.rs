@@ -4,8 +4,10 @@
 //! that makes the f32 bound hold each of them after rounding.
 
 mod dito;
+mod eigen;
 mod epos;
 mod min_obb;
+mod min_rect;
 mod min_sphere;
 mod pca;
 mod simple_sphere;

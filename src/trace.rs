@@ -1,0 +1,223 @@
+//! Box traces: N moving axis-aligned boxes over F frames, in the file layout of
+//! ../shared/SCENE_FORMAT.md, so that any broadphase can be run on the same
+//! frames and compared.
+
+use std::fmt;
+use std::io::{self, Read, Write};
+use std::path::Path;
+
+use bvol_volumes::Aabb;
+use glam::Vec3;
+
+const MAGIC: &[u8; 4] = b"BPHF";
+const VERSION: u32 = 1;
+const HEADER: usize = 16;
+const BOX_BYTES: usize = 24;
+
+/// A recording of `n` boxes over `frames` frames; box `i` is the same object in
+/// every frame.
+///
+/// ```
+/// use bvol::BoxTrace;
+/// use bvol::volumes::Aabb;
+/// use glam::Vec3;
+/// let mut trace = BoxTrace::new(2);
+/// trace.push_frame(&[Aabb::new(Vec3::ZERO, Vec3::ONE), Aabb::new(Vec3::ONE, Vec3::splat(2.0))]).unwrap();
+/// let mut bytes = Vec::new();
+/// trace.write_to(&mut bytes).unwrap();
+/// assert_eq!(BoxTrace::from_bytes(&bytes).unwrap(), trace);
+/// ```
+#[derive(Clone, Debug, PartialEq)]
+pub struct BoxTrace {
+    n: usize,
+    boxes: Vec<Aabb>,
+}
+
+/// What is wrong with a box-trace file.
+#[derive(Debug)]
+pub enum TraceError {
+    /// The file could not be read or written.
+    Io(io::Error),
+    /// The first four bytes are not `BPHF`.
+    BadMagic,
+    /// A version other than 1.
+    UnknownVersion(u32),
+    /// Shorter than its header says.
+    Truncated {
+        /// Bytes the header implies.
+        expected: u64,
+        /// Bytes there are.
+        actual: u64,
+    },
+    /// Longer than its header says.
+    TrailingBytes {
+        /// Bytes the header implies.
+        expected: u64,
+        /// Bytes there are.
+        actual: u64,
+    },
+    /// A box with `min > max` on some axis.
+    MinAboveMax {
+        /// Frame of the box.
+        frame: usize,
+        /// Index of the box.
+        index: usize,
+    },
+    /// A box with a NaN or infinite coordinate.
+    NonFinite {
+        /// Frame of the box.
+        frame: usize,
+        /// Index of the box.
+        index: usize,
+    },
+    /// A frame with another number of boxes than the trace's.
+    WrongCount {
+        /// The trace's box count.
+        expected: usize,
+        /// The frame's.
+        actual: usize,
+    },
+}
+
+impl fmt::Display for TraceError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TraceError::Io(e) => write!(f, "{e}"),
+            TraceError::BadMagic => write!(f, "bad magic: not a box trace (expected BPHF)"),
+            TraceError::UnknownVersion(v) => write!(f, "unknown version {v} (expected 1)"),
+            TraceError::Truncated { expected, actual } => {
+                write!(f, "truncated: {actual} bytes, the header implies {expected}")
+            }
+            TraceError::TrailingBytes { expected, actual } => {
+                write!(f, "trailing bytes: {actual} bytes, the header implies {expected}")
+            }
+            TraceError::MinAboveMax { frame, index } => {
+                write!(f, "frame {frame}, box {index}: min > max")
+            }
+            TraceError::NonFinite { frame, index } => {
+                write!(f, "frame {frame}, box {index}: NaN or infinite coordinate")
+            }
+            TraceError::WrongCount { expected, actual } => {
+                write!(f, "a frame of {actual} boxes in a trace of {expected}")
+            }
+        }
+    }
+}
+
+impl std::error::Error for TraceError {}
+
+impl From<io::Error> for TraceError {
+    fn from(e: io::Error) -> Self {
+        TraceError::Io(e)
+    }
+}
+
+/// Checks one box: finite, `min <= max`.
+fn check_box(b: &Aabb, frame: usize, index: usize) -> Result<(), TraceError> {
+    if !(b.min.is_finite() && b.max.is_finite()) {
+        return Err(TraceError::NonFinite { frame, index });
+    }
+    if b.min.cmpgt(b.max).any() {
+        return Err(TraceError::MinAboveMax { frame, index });
+    }
+    Ok(())
+}
+
+impl BoxTrace {
+    /// An empty trace of `n` boxes (no frames yet).
+    pub fn new(n: usize) -> Self {
+        BoxTrace { n, boxes: Vec::new() }
+    }
+
+    /// The number of boxes.
+    pub fn n(&self) -> usize {
+        self.n
+    }
+
+    /// The number of frames.
+    pub fn frames(&self) -> usize {
+        self.boxes.len().checked_div(self.n).unwrap_or(0)
+    }
+
+    /// The boxes of frame `f`.
+    pub fn frame(&self, f: usize) -> &[Aabb] {
+        &self.boxes[f * self.n..(f + 1) * self.n]
+    }
+
+    /// Appends a frame; it must hold `n` finite boxes with `min <= max`.
+    pub fn push_frame(&mut self, boxes: &[Aabb]) -> Result<(), TraceError> {
+        if boxes.len() != self.n {
+            return Err(TraceError::WrongCount { expected: self.n, actual: boxes.len() });
+        }
+        let frame = self.frames();
+        for (index, b) in boxes.iter().enumerate() {
+            check_box(b, frame, index)?;
+        }
+        self.boxes.extend_from_slice(boxes);
+        Ok(())
+    }
+
+    /// Reads a trace file.
+    pub fn read(path: impl AsRef<Path>) -> Result<BoxTrace, TraceError> {
+        let mut bytes = Vec::new();
+        std::fs::File::open(path)?.read_to_end(&mut bytes)?;
+        BoxTrace::from_bytes(&bytes)
+    }
+
+    /// Parses a trace from its bytes, checking the layout and every box.
+    pub fn from_bytes(bytes: &[u8]) -> Result<BoxTrace, TraceError> {
+        let word = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
+        if bytes.len() < 4 || &bytes[..4] != MAGIC {
+            return Err(TraceError::BadMagic);
+        }
+        if bytes.len() < HEADER {
+            return Err(TraceError::Truncated { expected: HEADER as u64, actual: bytes.len() as u64 });
+        }
+        if word(4) != VERSION {
+            return Err(TraceError::UnknownVersion(word(4)));
+        }
+        let (n, frames) = (word(8) as u64, word(12) as u64);
+        let expected = HEADER as u64 + BOX_BYTES as u64 * n * frames;
+        let actual = bytes.len() as u64;
+        if actual < expected {
+            return Err(TraceError::Truncated { expected, actual });
+        }
+        if actual > expected {
+            return Err(TraceError::TrailingBytes { expected, actual });
+        }
+        let float = |i: usize| f32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
+        let mut trace = BoxTrace { n: n as usize, boxes: Vec::with_capacity((n * frames) as usize) };
+        for k in 0..(n * frames) as usize {
+            let at = HEADER + k * BOX_BYTES;
+            let b = Aabb::new(
+                Vec3::new(float(at), float(at + 4), float(at + 8)),
+                Vec3::new(float(at + 12), float(at + 16), float(at + 20)),
+            );
+            check_box(&b, k / n as usize, k % n as usize)?;
+            trace.boxes.push(b);
+        }
+        Ok(trace)
+    }
+
+    /// Writes the trace in the file layout.
+    pub fn write_to(&self, out: &mut impl Write) -> Result<(), TraceError> {
+        out.write_all(MAGIC)?;
+        for word in [VERSION, self.n as u32, self.frames() as u32] {
+            out.write_all(&word.to_le_bytes())?;
+        }
+        for b in &self.boxes {
+            for v in [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z] {
+                out.write_all(&v.to_le_bytes())?;
+            }
+        }
+        Ok(())
+    }
+
+    /// Writes the trace to a file.
+    pub fn write(&self, path: impl AsRef<Path>) -> Result<(), TraceError> {
+        let mut out = io::BufWriter::new(std::fs::File::create(path)?);
+        self.write_to(&mut out)?;
+        out.flush()?;
+        Ok(())
+    }
+}

@@ -1,0 +1,126 @@
+//! Box traces: round trip through the file layout, every malformed file named,
+//! and the generated scenes' properties.
+
+use bvol::scenes::{Scene, SceneKind};
+use bvol::volumes::Aabb;
+use bvol::{BoxTrace, PairDigest, TraceError};
+use glam::Vec3;
+
+fn sample_trace(n: usize, frames: usize) -> BoxTrace {
+    let mut scene = Scene::new(SceneKind::Uniform, n, 1);
+    let mut trace = BoxTrace::new(n);
+    for _ in 0..frames {
+        trace.push_frame(scene.step()).unwrap();
+    }
+    trace
+}
+
+fn bytes_of(trace: &BoxTrace) -> Vec<u8> {
+    let mut bytes = Vec::new();
+    trace.write_to(&mut bytes).unwrap();
+    bytes
+}
+
+#[test]
+fn round_trip_through_a_file() {
+    let trace = sample_trace(50, 4);
+    let path = std::env::temp_dir().join(format!("bvol-trace-{}.bphf", std::process::id()));
+    trace.write(&path).unwrap();
+    let bytes = std::fs::read(&path).unwrap();
+    assert_eq!(bytes.len(), 16 + 24 * 50 * 4);
+    assert_eq!(&bytes[..4], b"BPHF");
+    assert_eq!(u32::from_le_bytes(bytes[8..12].try_into().unwrap()), 50);
+    assert_eq!(BoxTrace::read(&path).unwrap(), trace);
+    std::fs::remove_file(path).unwrap();
+}
+
+#[test]
+fn malformed_files_say_what_is_wrong() {
+    let good = bytes_of(&sample_trace(3, 2));
+    let with = |edit: &dyn Fn(&mut Vec<u8>)| {
+        let mut b = good.clone();
+        edit(&mut b);
+        BoxTrace::from_bytes(&b).unwrap_err()
+    };
+    assert!(matches!(with(&|b| b[0] = b'X'), TraceError::BadMagic));
+    assert!(matches!(with(&|b| b.truncate(2)), TraceError::BadMagic));
+    assert!(matches!(with(&|b| b[4] = 2), TraceError::UnknownVersion(2)));
+    assert!(matches!(with(&|b| b.truncate(10)), TraceError::Truncated { .. }));
+    assert!(matches!(with(&|b| { b.pop(); }), TraceError::Truncated { expected: 160, actual: 159 }));
+    assert!(matches!(with(&|b| b.push(0)), TraceError::TrailingBytes { expected: 160, actual: 161 }));
+    // Frame 1, box 2: min.x above max.x, then a NaN.
+    let at = 16 + 24 * (3 + 2);
+    let e = with(&|b| b[at..at + 4].copy_from_slice(&1e9f32.to_le_bytes()));
+    assert!(matches!(e, TraceError::MinAboveMax { frame: 1, index: 2 }), "{e}");
+    assert_eq!(e.to_string(), "frame 1, box 2: min > max");
+    let e = with(&|b| b[at + 8..at + 12].copy_from_slice(&f32::NAN.to_le_bytes()));
+    assert!(matches!(e, TraceError::NonFinite { frame: 1, index: 2 }));
+    assert!(matches!(BoxTrace::read("/no/such/trace").unwrap_err(), TraceError::Io(_)));
+    // Building a trace checks the same things.
+    let mut t = BoxTrace::new(1);
+    assert!(matches!(t.push_frame(&[]), Err(TraceError::WrongCount { expected: 1, actual: 0 })));
+    let inverted = Aabb::new(Vec3::ONE, Vec3::ZERO);
+    assert!(matches!(t.push_frame(&[inverted]), Err(TraceError::MinAboveMax { frame: 0, index: 0 })));
+    assert_eq!(t.frames(), 0);
+}
+
+/// The brute-force pair set of a frame (closed boxes: touching counts).
+fn brute_pairs(boxes: &[Aabb]) -> Vec<(u32, u32)> {
+    let mut out = Vec::new();
+    for a in 0..boxes.len() {
+        for b in a + 1..boxes.len() {
+            if boxes[a].overlaps(&boxes[b]) {
+                out.push((a as u32, b as u32));
+            }
+        }
+    }
+    out
+}
+
+#[test]
+fn scenes_are_deterministic_and_have_pairs() {
+    for kind in SceneKind::ALL {
+        let (mut a, mut b) = (Scene::new(kind, 2000, 3), Scene::new(kind, 2000, 3));
+        let mut pairs = 0;
+        for _ in 0..5 {
+            let frame = a.step().to_vec();
+            assert_eq!(frame, b.step());
+            assert!(frame.iter().all(|x| x.min.is_finite() && x.max.cmpge(x.min).all()));
+            pairs += brute_pairs(&frame).len();
+        }
+        assert!(pairs > 5 * 2000 / 10, "{kind}: only {pairs} pairs in 5 frames");
+        assert_ne!(Scene::new(kind, 2000, 4).step(), Scene::new(kind, 2000, 3).step());
+    }
+}
+
+#[test]
+fn the_pile_comes_to_rest_on_the_floor() {
+    let mut scene = Scene::new(SceneKind::Pile, 3000, 9);
+    let mut last = scene.step().to_vec();
+    let mut still_at = None;
+    for frame in 1..400 {
+        let now = scene.step().to_vec();
+        assert!(now.iter().all(|b| b.min.y >= 0.0), "a body below the floor");
+        if now == last && still_at.is_none() {
+            still_at = Some(frame);
+        }
+        last = now;
+    }
+    assert!(still_at.is_some(), "the pile never came to rest");
+    // Resting bodies stack: many touch the one under them.
+    assert!(brute_pairs(&last).len() > 3000 / 2);
+}
+
+#[test]
+fn digest_of_a_trace_is_the_sum_of_its_frames() {
+    let trace = sample_trace(300, 3);
+    let mut total = PairDigest::default();
+    let mut all = Vec::new();
+    for f in 0..3 {
+        let pairs = brute_pairs(trace.frame(f));
+        total += PairDigest::of_pairs(pairs.iter().copied());
+        all.extend(pairs);
+    }
+    assert_eq!(total, PairDigest::of_pairs(all));
+    assert_eq!(format!("{}", PairDigest { count: 3, h1: 0xab, h2: u64::MAX }), "3\t00000000000000ab\tffffffffffffffff");
+}
