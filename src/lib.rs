@@ -26,4 +26,4 @@ mod trace;
 pub use bvol_volumes as volumes;
 pub use digest::PairDigest;
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
-pub use trace::{BoxTrace, TraceError};
+pub use trace::{BoxTrace, TraceError, TraceWriter};

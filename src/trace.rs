@@ -70,6 +70,13 @@ pub enum TraceError {
         /// Index of the box.
         index: usize,
     },
+    /// More or fewer frames written than the header announced.
+    FrameCount {
+        /// Frames the header announced.
+        announced: usize,
+        /// Frames written.
+        written: usize,
+    },
     /// A frame with another number of boxes than the trace's.
     WrongCount {
         /// The trace's box count.
@@ -96,6 +103,9 @@ impl fmt::Display for TraceError {
             }
             TraceError::NonFinite { frame, index } => {
                 write!(f, "frame {frame}, box {index}: NaN or infinite coordinate")
+            }
+            TraceError::FrameCount { announced, written } => {
+                write!(f, "{written} frames written, the header announced {announced}")
             }
             TraceError::WrongCount { expected, actual } => {
                 write!(f, "a frame of {actual} boxes in a trace of {expected}")
@@ -201,16 +211,11 @@ impl BoxTrace {
 
     /// Writes the trace in the file layout.
     pub fn write_to(&self, out: &mut impl Write) -> Result<(), TraceError> {
-        out.write_all(MAGIC)?;
-        for word in [VERSION, self.n as u32, self.frames() as u32] {
-            out.write_all(&word.to_le_bytes())?;
+        let mut writer = TraceWriter::new(out, self.n, self.frames())?;
+        for f in 0..self.frames() {
+            writer.write_frame(self.frame(f))?;
         }
-        for b in &self.boxes {
-            for v in [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z] {
-                out.write_all(&v.to_le_bytes())?;
-            }
-        }
-        Ok(())
+        writer.finish().map(|_| ())
     }
 
     /// Writes the trace to a file.
@@ -219,5 +224,52 @@ impl BoxTrace {
         self.write_to(&mut out)?;
         out.flush()?;
         Ok(())
+    }
+}
+
+/// Writes a trace frame by frame, without holding it in memory: the header
+/// first, then each frame as it comes.
+pub struct TraceWriter<W: Write> {
+    out: W,
+    n: usize,
+    frames: usize,
+    written: usize,
+}
+
+impl<W: Write> TraceWriter<W> {
+    /// Starts a trace of `n` boxes over `frames` frames.
+    pub fn new(mut out: W, n: usize, frames: usize) -> Result<Self, TraceError> {
+        out.write_all(MAGIC)?;
+        for word in [VERSION, n as u32, frames as u32] {
+            out.write_all(&word.to_le_bytes())?;
+        }
+        Ok(TraceWriter { out, n, frames, written: 0 })
+    }
+
+    /// Writes the next frame: `n` boxes, checked as [`BoxTrace::push_frame`] does.
+    pub fn write_frame(&mut self, boxes: &[Aabb]) -> Result<(), TraceError> {
+        if boxes.len() != self.n {
+            return Err(TraceError::WrongCount { expected: self.n, actual: boxes.len() });
+        }
+        if self.written == self.frames {
+            return Err(TraceError::FrameCount { announced: self.frames, written: self.written + 1 });
+        }
+        let mut bytes = Vec::with_capacity(boxes.len() * BOX_BYTES);
+        for b in boxes {
+            for v in [b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z] {
+                bytes.extend_from_slice(&v.to_le_bytes());
+            }
+        }
+        self.out.write_all(&bytes)?;
+        self.written += 1;
+        Ok(())
+    }
+
+    /// The underlying writer, once every frame announced has been written.
+    pub fn finish(self) -> Result<W, TraceError> {
+        if self.written != self.frames {
+            return Err(TraceError::FrameCount { announced: self.frames, written: self.written });
+        }
+        Ok(self.out)
     }
 }

@@ -1,5 +1,6 @@
 //! Command-line arguments and dispatch.
 
+mod bench;
 mod fit;
 
 use std::path::PathBuf;
@@ -25,11 +26,22 @@ enum Command {
         #[arg(long)]
         json: bool,
     },
+    /// Benchmarks.
+    #[command(subcommand)]
+    Bench(Bench),
+}
+
+#[derive(Subcommand, Debug)]
+enum Bench {
+    /// Broadphase: tree update + every overlapping pair, per frame, on a
+    /// generated scene or a box trace; one line in the box-trace bench format.
+    Pairs(bench::PairsArgs),
 }
 
 /// Runs a command; the error is one line for the user.
 pub fn run(args: Args) -> Result<(), String> {
     match args.command {
         Command::Fit { mesh, json } => fit::run(&mesh, json),
+        Command::Bench(Bench::Pairs(args)) => bench::run(args),
     }
 }

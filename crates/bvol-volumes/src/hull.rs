@@ -4,12 +4,14 @@
 //!
 //! Input points are f32, so their positions carry a relative error of about
 //! 2^-24 of the set's size: faces coplanar to that precision are one face, and a
-//! point that close to the hull is not a vertex. That tolerance is relative to
-//! the set's extent about its box centre (qhull's `3 * maxabs_sum * epsilon`,
-//! with f32's epsilon and centred coordinates), so the same shape scaled or moved
-//! gives the same faces. The exact signs (Shewchuk's predicates, on the f32
-//! values held exactly in f64) keep every intermediate hull a closed manifold,
-//! so no input, however degenerate, can break it.
+//! point that close to a face or an edge is not a vertex. That tolerance is
+//! relative to the set's extent about its box centre (qhull's
+//! `3 * maxabs_sum * epsilon`, with f32's epsilon and centred coordinates), so the
+//! same shape scaled or moved gives the same faces. The exact signs (Shewchuk's
+//! predicates, on the f32 values held exactly in f64) keep every intermediate
+//! hull a closed manifold, so no input, however degenerate, can break it; and a
+//! solid's face planes are planes of that exact hull, so every input point lies
+//! behind every one of them, up to rounding.
 
 mod merge;
 mod planar;
@@ -31,18 +33,27 @@ struct Frame<'a> {
 impl<'a> Frame<'a> {
     /// The frame of a non-empty set of finite points.
     fn new(points: &'a [Vec3]) -> Self {
-        let (lo, hi) = points
-            .iter()
-            .fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
         let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
         let half = (hi - lo) * 0.5;
         let eps = 3.0 * (half.x + half.y + half.z) * f64::from(f32::EPSILON);
-        Frame { points, centre: (lo + hi) * 0.5, eps }
+        Frame {
+            points,
+            centre: (lo + hi) * 0.5,
+            eps,
+        }
     }
 
     /// Point `i` relative to the centre: rounded, for plane distances.
     fn at(&self, i: u32) -> DVec3 {
-        self.points[i as usize].as_dvec3() - self.centre
+        self.relative(self.points[i as usize])
+    }
+
+    /// A point relative to the centre.
+    fn relative(&self, p: Vec3) -> DVec3 {
+        p.as_dvec3() - self.centre
     }
 
     /// Point `i` as given, exact in f64: for the orientation predicate.
@@ -54,7 +65,10 @@ impl<'a> Frame<'a> {
     fn farthest(&self, measure: impl Fn(DVec3) -> f64) -> (u32, f64) {
         (0..self.points.len() as u32)
             .map(|i| (i, measure(self.at(i))))
-            .fold((0, f64::NEG_INFINITY), |best, x| if x.1 > best.1 { x } else { best })
+            .fold(
+                (0, f64::NEG_INFINITY),
+                |best, x| if x.1 > best.1 { x } else { best },
+            )
     }
 }
 
@@ -107,7 +121,10 @@ impl ConvexHull {
         // lowers the dimension.
         let (a, b) = widest_axis_extremes(&frame);
         let (pa, pb) = (frame.at(a), frame.at(b));
-        let Some(axis) = (pb - pa).try_normalize().filter(|_| pa.distance(pb) > frame.eps) else {
+        let Some(axis) = (pb - pa)
+            .try_normalize()
+            .filter(|_| pa.distance(pb) > frame.eps)
+        else {
             return Ok(Self::point(&frame, a));
         };
         let (c, off_line) = frame.farthest(|p| (p - pa).cross(axis).length());
@@ -134,16 +151,18 @@ impl ConvexHull {
 
     /// The hull of a set whose points all coincide.
     fn point(frame: &Frame, i: u32) -> Self {
-        Self::assemble(frame, 0, vec![i], &[], &[])
+        Self::assemble(frame, 0, vec![i], &[], &[], &[])
     }
 
     /// The hull of a set within tolerance of a line along `axis`: its two ends.
     fn segment(frame: &Frame, axis: DVec3) -> Self {
         let (hi, _) = frame.farthest(|p| p.dot(axis));
         let (lo, _) = frame.farthest(|p| -p.dot(axis));
-        let mut ends = vec![lo.min(hi), lo.max(hi)];
-        ends.dedup();
-        Self::assemble(frame, 1, ends, &[], &[])
+        if lo == hi {
+            // Not reached: callers pass the axis of two points apart along it.
+            return Self::point(frame, lo);
+        }
+        Self::assemble(frame, 1, vec![lo.min(hi), lo.max(hi)], &[], &[], &[])
     }
 
     /// The hull of a set within tolerance of a plane with unit `normal`: its
@@ -153,13 +172,24 @@ impl ConvexHull {
         if ring.len() < 3 {
             return Self::segment(frame, axis);
         }
+        // The plane fitted to the polygon (Newell): its area vector, through its mean.
+        let corners: Vec<DVec3> = ring.iter().map(|&i| frame.at(i)).collect();
+        let o = corners[0];
+        let normal = corners
+            .windows(2)
+            .map(|w| (w[0] - o).cross(w[1] - o))
+            .sum::<DVec3>()
+            .try_normalize()
+            .unwrap_or(normal);
+        let offset = normal.dot(corners.iter().sum::<DVec3>()) / corners.len() as f64;
         let back: Vec<u32> = ring.iter().rev().copied().collect();
         let n = ring.len() as u32;
         let mut vertices = ring.clone();
         vertices.sort_unstable();
         let local = |i: &u32| vertices.binary_search(i).unwrap_or(0) as u32;
         let loops: Vec<u32> = ring.iter().chain(&back).map(local).collect();
-        Self::assemble(frame, 2, vertices, &loops, &[0, n, 2 * n])
+        let planes = [(normal, offset), (-normal, -offset)];
+        Self::assemble(frame, 2, vertices, &loops, &[0, n, 2 * n], &planes)
     }
 
     /// A solid hull from the merged faces over the triangulation's vertices
@@ -169,37 +199,42 @@ impl ConvexHull {
         used.sort_unstable();
         used.dedup();
         let vertices: Vec<u32> = used.iter().map(|&v| tri_vertices[v as usize]).collect();
-        let loops: Vec<u32> =
-            faces.loops.iter().map(|v| used.binary_search(v).unwrap_or(0) as u32).collect();
-        Self::assemble(frame, 3, vertices, &loops, &faces.starts)
+        let loops: Vec<u32> = faces
+            .loops
+            .iter()
+            .map(|v| used.binary_search(v).unwrap_or(0) as u32)
+            .collect();
+        Self::assemble(frame, 3, vertices, &loops, &faces.starts, &faces.planes)
     }
 
-    /// The hull from its vertices (input indices, ascending) and face loops
-    /// (indices into them); computes each face's plane (Newell's normal, offset
-    /// through the mean of its vertices).
-    fn assemble(frame: &Frame, dimension: u8, vertices: Vec<u32>, loops: &[u32], starts: &[u32]) -> Self {
-        let mut hull = ConvexHull {
+    /// The hull from its vertices (input indices, ascending), face loops
+    /// (indices into them, concatenated, with their starts) and face planes in
+    /// the frame.
+    fn assemble(
+        frame: &Frame,
+        dimension: u8,
+        vertices: Vec<u32>,
+        loops: &[u32],
+        starts: &[u32],
+        planes: &[(DVec3, f64)],
+    ) -> Self {
+        ConvexHull {
             vertices: vertices.iter().map(|&i| frame.points[i as usize]).collect(),
             face_vertices: loops.to_vec(),
-            face_starts: if starts.is_empty() { vec![0] } else { starts.to_vec() },
-            normals: Vec::new(),
-            offsets: Vec::new(),
+            face_starts: if starts.is_empty() {
+                vec![0]
+            } else {
+                starts.to_vec()
+            },
+            normals: planes.iter().map(|p| p.0).collect(),
+            // From the frame's origin to the input's.
+            offsets: planes
+                .iter()
+                .map(|&(n, d)| d + n.dot(frame.centre))
+                .collect(),
             dimension,
             tolerance: frame.eps,
-        };
-        let pos: Vec<DVec3> = vertices.iter().map(|&i| frame.at(i)).collect();
-        for f in 0..hull.face_count() {
-            let face: Vec<DVec3> = hull.face(f).iter().map(|&v| pos[v as usize]).collect();
-            let o = face[0];
-            let normal = face
-                .windows(2)
-                .fold(DVec3::ZERO, |n, w| n + (w[0] - o).cross(w[1] - o))
-                .normalize_or_zero();
-            let mean = face.iter().sum::<DVec3>() / face.len() as f64;
-            hull.normals.push(normal);
-            hull.offsets.push(normal.dot(mean + frame.centre));
         }
-        hull
     }
 
     /// 0 for a single point (all input points equal), 1 for a segment (collinear
@@ -209,8 +244,8 @@ impl ConvexHull {
         self.dimension
     }
 
-    /// The hull's vertices: exact copies of input points, each once, in the
-    /// order of their first appearance in the input.
+    /// The hull's vertices: exact copies of input points, each once, in input
+    /// order.
     pub fn vertices(&self) -> &[Vec3] {
         &self.vertices
     }
@@ -229,16 +264,18 @@ impl ConvexHull {
         &self.face_vertices[self.face_starts[i] as usize..self.face_starts[i + 1] as usize]
     }
 
-    /// Unit outward normal of face `i`, fitted to all its vertices (Newell).
+    /// Unit outward normal of face `i`. A solid's face has the plane of its
+    /// largest triangle of the exact hull (so every input point lies behind it,
+    /// up to rounding); a flat hull's, the plane fitted to its polygon.
     ///
     /// Panics if `i >= face_count()`.
     pub fn face_normal(&self, i: usize) -> DVec3 {
         self.normals[i]
     }
 
-    /// Offset of face `i`'s plane: `face_normal(i) . x` for `x` on the face
-    /// (the mean over its vertices). Every input point `p` has
-    /// `face_normal(i) . p - face_offset(i) <= tolerance()` up to rounding.
+    /// Offset of face `i`'s plane: `face_normal(i) . x = face_offset(i)` on it.
+    /// Every vertex of the face lies within [`tolerance`](Self::tolerance) of
+    /// the plane, and every input point behind it or within tolerance.
     ///
     /// Panics if `i >= face_count()`.
     pub fn face_offset(&self, i: usize) -> f64 {
@@ -276,7 +313,11 @@ impl ConvexHull {
 
     /// Number of undirected edges: `edges().count()`, without walking them.
     pub fn edge_count(&self) -> usize {
-        if self.dimension == 1 { 1 } else { self.face_vertices.len() / 2 }
+        if self.dimension == 1 {
+            1
+        } else {
+            self.face_vertices.len() / 2
+        }
     }
 
     /// Enclosed volume, 0 unless the hull is solid: the tetrahedra from the
@@ -287,7 +328,10 @@ impl ConvexHull {
         }
         let o = self.vertices[0].as_dvec3();
         let at = |v: u32| self.vertices[v as usize].as_dvec3() - o;
-        self.triangles().map(|[a, b, c]| at(a).dot(at(b).cross(at(c)))).sum::<f64>() / 6.0
+        self.triangles()
+            .map(|[a, b, c]| at(a).dot(at(b).cross(at(c))))
+            .sum::<f64>()
+            / 6.0
     }
 
     /// Surface area, in f64; a flat hull counts both sides (twice its polygon).
@@ -300,12 +344,46 @@ impl ConvexHull {
     }
 }
 
+/// Douglas-Peucker on a polyline whose two ends stay: clears `keep` for each
+/// inner point within `eps` of the segment that spans it in the result, so every
+/// dropped point stays within `eps` of the simplified line.
+fn douglas_peucker(points: &[DVec3], eps: f64, keep: &mut [bool]) {
+    let mut spans = vec![(0, points.len() - 1)];
+    while let Some((lo, hi)) = spans.pop() {
+        if hi < lo + 2 {
+            continue;
+        }
+        let (a, b) = (points[lo], points[hi]);
+        let dist = |p: DVec3| {
+            let t = ((p - a).dot(b - a) / (b - a).length_squared()).clamp(0.0, 1.0);
+            p.distance(if t.is_finite() { a + (b - a) * t } else { a })
+        };
+        let (far, far_dist) = (lo + 1..hi)
+            .map(|k| (k, dist(points[k])))
+            .fold((lo, -1.0), |m, x| if x.1 > m.1 { x } else { m });
+        if far_dist <= eps {
+            keep[lo + 1..hi].iter_mut().for_each(|k| *k = false);
+        } else {
+            spans.push((lo, far));
+            spans.push((far, hi));
+        }
+    }
+}
+
 /// The farthest apart pair among the points with the least and greatest
 /// coordinate on each axis (first on ties).
 fn widest_axis_extremes(frame: &Frame) -> (u32, u32) {
-    let extremes: Vec<u32> = (0..3)
-        .flat_map(|k| [frame.farthest(|p| -p[k]).0, frame.farthest(|p| p[k]).0])
-        .collect();
+    let mut extremes = [0u32; 6];
+    for (i, p) in (0..).zip(frame.points) {
+        for k in 0..3 {
+            if p[k] < frame.points[extremes[2 * k] as usize][k] {
+                extremes[2 * k] = i;
+            }
+            if p[k] > frame.points[extremes[2 * k + 1] as usize][k] {
+                extremes[2 * k + 1] = i;
+            }
+        }
+    }
     let mut best = (extremes[0], extremes[0], -1.0);
     for (i, &a) in extremes.iter().enumerate() {
         for &b in &extremes[i + 1..] {

@@ -6,6 +6,7 @@
 
 mod common;
 
+use std::f64::consts::PI;
 use std::sync::OnceLock;
 
 use bvol_volumes::{FitError, Sphere, SphereMethod};
@@ -22,7 +23,10 @@ fn fit_all(points: &[Vec3]) -> Vec<(SphereMethod, Sphere)> {
         .iter()
         .map(|&m| {
             let s = fit(points, m);
-            assert!(s.radius >= 0.0 && s.radius.is_finite() && s.center.is_finite(), "{m}: {s:?}");
+            assert!(
+                s.radius >= 0.0 && s.radius.is_finite() && s.center.is_finite(),
+                "{m}: {s:?}"
+            );
             if let Some(p) = points.iter().find(|&&p| !s.contains_point(p)) {
                 panic!("{m}: {s:?} misses {p:?}");
             }
@@ -39,7 +43,11 @@ fn rounding(s: &Sphere) -> f64 {
 
 /// The exact sphere is no larger than any other method's, up to rounding.
 fn assert_exact_smallest(spheres: &[(SphereMethod, Sphere)]) {
-    let exact = spheres.iter().find(|(m, _)| *m == SphereMethod::Exact).expect("exact").1;
+    let exact = spheres
+        .iter()
+        .find(|(m, _)| *m == SphereMethod::Exact)
+        .expect("exact")
+        .1;
     for (m, s) in spheres {
         assert!(
             exact.radius as f64 <= s.radius as f64 + rounding(&exact),
@@ -60,7 +68,10 @@ fn brute_force_radius(points: &[Vec3]) -> f64 {
     let n = p.len();
     let mut best = f64::INFINITY;
     let mut consider = |c: DVec3, through: &[DVec3]| {
-        let r = through.iter().map(|&q| (q - c).length()).fold(0.0, f64::max);
+        let r = through
+            .iter()
+            .map(|&q| (q - c).length())
+            .fold(0.0, f64::max);
         if r < best && p.iter().all(|&q| (q - c).length() <= r * (1.0 + 1e-9)) {
             best = r;
         }
@@ -123,7 +134,7 @@ impl Placement {
 /// Random rotations, scales 1e-4..1e4, offsets up to `max_offset` (in units of
 /// the scale when `relative`).
 fn placement(max_offset: f64, relative: bool) -> impl Strategy<Value = Placement> {
-    let angle = -std::f64::consts::PI..std::f64::consts::PI;
+    let angle = -PI..PI;
     (
         (angle.clone(), angle.clone(), angle),
         -4.0f64..4.0,
@@ -131,7 +142,11 @@ fn placement(max_offset: f64, relative: bool) -> impl Strategy<Value = Placement
     )
         .prop_map(move |((a, b, c), e, (x, y, z))| {
             let scale = 10f64.powf(e);
-            let reach = if relative { max_offset * scale } else { max_offset };
+            let reach = if relative {
+                max_offset * scale
+            } else {
+                max_offset
+            };
             Placement {
                 rotation: DQuat::from_euler(EulerRot::ZYX, a, b, c),
                 scale,
@@ -152,6 +167,7 @@ enum Shape {
     Collinear,
     Coplanar,
     Cospherical,
+    Cocircular,
 }
 
 fn shape() -> impl Strategy<Value = Shape> {
@@ -161,6 +177,7 @@ fn shape() -> impl Strategy<Value = Shape> {
         Just(Shape::Collinear),
         Just(Shape::Coplanar),
         Just(Shape::Cospherical),
+        Just(Shape::Cocircular),
     ]
 }
 
@@ -169,9 +186,19 @@ fn shaped(shape: Shape, raw: &[DVec3]) -> Vec<DVec3> {
     match shape {
         Shape::Cloud => raw.to_vec(),
         Shape::Duplicates => vec![raw[0]; raw.len()],
-        Shape::Collinear => raw.iter().map(|p| DVec3::new(p.x, 0.3 * p.x, -0.5 * p.x)).collect(),
+        Shape::Collinear => raw
+            .iter()
+            .map(|p| DVec3::new(p.x, 0.3 * p.x, -0.5 * p.x))
+            .collect(),
         Shape::Coplanar => raw.iter().map(|p| DVec3::new(p.x, p.y, 0.0)).collect(),
-        Shape::Cospherical => raw.iter().map(|p| p.try_normalize().unwrap_or(DVec3::Y)).collect(),
+        Shape::Cospherical => raw
+            .iter()
+            .map(|p| p.try_normalize().unwrap_or(DVec3::Y))
+            .collect(),
+        Shape::Cocircular => raw
+            .iter()
+            .map(|p| DVec3::new((p.x * PI).cos(), (p.x * PI).sin(), 0.0))
+            .collect(),
     }
 }
 
@@ -191,12 +218,23 @@ fn check_set(shape: Shape, points: &[Vec3]) {
             // points off their line and of the centre.
             let half = points
                 .iter()
-                .flat_map(|a| points.iter().map(move |b| a.as_dvec3().distance(b.as_dvec3())))
+                .flat_map(|a| {
+                    points
+                        .iter()
+                        .map(move |b| a.as_dvec3().distance(b.as_dvec3()))
+                })
                 .fold(0.0, f64::max)
                 / 2.0;
-            let size = points.iter().map(|p| p.abs().max_element()).fold(0.0, f32::max) as f64;
+            let size = points
+                .iter()
+                .map(|p| p.abs().max_element())
+                .fold(0.0, f32::max) as f64;
             let tol = 1e-6 * half + 4.0 * f32::EPSILON as f64 * size;
-            assert!((exact.radius as f64 - half).abs() <= tol, "{} vs {half}", exact.radius);
+            assert!(
+                (exact.radius as f64 - half).abs() <= tol,
+                "{} vs {half}",
+                exact.radius
+            );
         }
         _ => {}
     }
@@ -222,15 +260,27 @@ proptest! {
 
 /// Small sets near the origin: offsets of at most 2 sizes.
 fn small_set() -> impl Strategy<Value = (Shape, Vec<Vec3>)> {
-    (shape(), prop::collection::vec(coords(), 1..=12), placement(2.0, true))
+    (
+        shape(),
+        prop::collection::vec(coords(), 1..=12),
+        placement(2.0, true),
+    )
         .prop_map(|(shape, raw, place)| {
-            (shape, shaped(shape, &raw).into_iter().map(|p| place.place(p)).collect())
+            (
+                shape,
+                shaped(shape, &raw)
+                    .into_iter()
+                    .map(|p| place.place(p))
+                    .collect(),
+            )
         })
 }
 
 /// `n` points inside the ball of radius `0.9 r` about `c`.
 fn inside(c: DVec3, r: f64, raw: &[DVec3]) -> Vec<DVec3> {
-    raw.iter().map(|&p| c + p.clamp_length_max(1.0) * 0.9 * r).collect()
+    raw.iter()
+        .map(|&p| c + p.clamp_length_max(1.0) * 0.9 * r)
+        .collect()
 }
 
 /// The sphere's radius is `want` to 1e-6 of it, once the f32 rounding of the
@@ -238,7 +288,10 @@ fn inside(c: DVec3, r: f64, raw: &[DVec3]) -> Vec<DVec3> {
 /// distance from the origin).
 fn assert_radius(s: &Sphere, want: f64, what: &str) {
     let got = s.radius as f64;
-    assert!((got - want).abs() <= 1e-6 * want + rounding(s), "{what}: {got} vs {want}");
+    assert!(
+        (got - want).abs() <= 1e-6 * want + rounding(s),
+        "{what}: {got} vs {want}"
+    );
 }
 
 proptest! {
@@ -296,6 +349,28 @@ proptest! {
     }
 }
 
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(1000))]
+
+    /// Corners, edge and face centres of a cube, scaled by a power of two and
+    /// moved by a multiple of the scale, all exact in f32: exact ties,
+    /// cocircular and coplanar quadruples, repeats. The exact sphere still
+    /// matches brute force, and every method holds every point.
+    #[test]
+    fn exact_handles_exact_ties(
+        raw in prop::collection::vec(coords(), 1..=12),
+        e in -10i32..10,
+        shift in (-8i32..8, -8i32..8, -8i32..8),
+    ) {
+        let scale = 2f64.powi(e);
+        let shift = DVec3::new(shift.0 as f64, shift.1 as f64, shift.2 as f64);
+        let points: Vec<Vec3> =
+            raw.iter().map(|p| ((p.round() + shift) * scale).as_vec3()).collect();
+        assert_radius(&fit(&points, SphereMethod::Exact), brute_force_radius(&points), "lattice");
+        check_set(Shape::Cloud, &points);
+    }
+}
+
 /// The shipped meshes with their reference rows, loaded once.
 fn meshes() -> &'static [(common::Reference, Vec<Vec3>)] {
     static MESHES: OnceLock<Vec<(common::Reference, Vec<Vec3>)>> = OnceLock::new();
@@ -324,9 +399,15 @@ fn real_meshes_match_their_reference_radii() {
         let exact = exact.radius as f64;
         let ritter = fit(points, SphereMethod::Ritter).radius as f64;
         // The reference radii hold to 1e-6, as the exact sphere checks.
-        assert!(ritter >= want * (1.0 - 1e-6), "{}: ritter {ritter} < {want}", reference.name);
-        let ratios: Vec<String> =
-            spheres.iter().map(|(m, s)| format!("{m} {:.4}", s.radius as f64 / exact)).collect();
+        assert!(
+            ritter >= want * (1.0 - 1e-6),
+            "{}: ritter {ritter} < {want}",
+            reference.name
+        );
+        let ratios: Vec<String> = spheres
+            .iter()
+            .map(|(m, s)| format!("{m} {:.4}", s.radius as f64 / exact))
+            .collect();
         println!(
             "{:9} exact {exact:.9} (ref {want}), ritter ref {:.4}: {}",
             reference.name,
@@ -362,8 +443,16 @@ fn empty_and_non_finite_input_are_errors() {
     let inf = [Vec3::new(f32::INFINITY, 0.0, 0.0)];
     for &m in SphereMethod::ALL {
         assert_eq!(Sphere::fit(&[], m), Err(FitError::Empty), "{m}");
-        assert_eq!(Sphere::fit(&nan, m), Err(FitError::NonFinite { index: 2 }), "{m}");
-        assert_eq!(Sphere::fit(&inf, m), Err(FitError::NonFinite { index: 0 }), "{m}");
+        assert_eq!(
+            Sphere::fit(&nan, m),
+            Err(FitError::NonFinite { index: 2 }),
+            "{m}"
+        );
+        assert_eq!(
+            Sphere::fit(&inf, m),
+            Err(FitError::NonFinite { index: 0 }),
+            "{m}"
+        );
     }
 }
 

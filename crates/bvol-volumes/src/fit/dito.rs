@@ -6,22 +6,32 @@
 //! the extreme farthest from their line) and the two tetrahedra raised on it
 //! to the extremes farthest above and below its plane give up to seven
 //! triangles; each triangle's edges give three axis triples (edge, normal,
-//! their cross product). The triple whose box on the extremes has the least
-//! surface area wins, and its box over all points is kept unless the AABB's is
-//! no larger (the paper's final check). Cost: one pass for the extremes, two
-//! for the final box.
+//! their cross product). The triple whose box on the extremes is smallest
+//! wins, and its box over all points is kept unless the AABB's is no larger
+//! (the paper's final check). Cost: one pass for the extremes, two for the
+//! final box.
+//!
+//! Boxes are ranked by volume, flat ones (zero volume up to rounding) first
+//! and by surface area among themselves. The paper ranks by surface area
+//! alone; on the real meshes the two agree to within a few percent, but area
+//! prefers a thin rod to the flat box of a coplanar set (a flat box counts both
+//! sides), and volume is what this crate's boxes are judged by.
 
 use glam::{DMat3, DVec3, Vec3};
 
+use crate::Obb;
 use crate::directions::{as_vec3, directions};
 use crate::obb::basis;
-use crate::Obb;
 
 /// Relative distance below which a third point counts as on the base line, or
 /// a fourth as on the base plane (the paper's degenerate cases). It only has to
 /// keep normals away from rounding noise: f64 cross products of the exact
 /// differences of f32 points stay accurate far below it.
 const FLAT: f64 = 1e-9;
+
+/// Relative thickness below which a box counts as flat: above the f32
+/// rounding of points (about 6e-8 of their size), far below real thin parts.
+const FLAT_BOX: f64 = 1e-5;
 
 /// Points per block of the extreme-point pass.
 const BLOCK: usize = 64;
@@ -30,13 +40,12 @@ const BLOCK: usize = 64;
 pub(crate) fn dito<const N: usize>(points: &[Vec3]) -> Obb {
     let extremes = Extremes::<N>::of(points);
     let aabb = DMat3::IDENTITY;
-    let axes = extremes.best_axes();
+    let axes = extremes.best_axes(points);
     if axes == aabb {
         return Obb::on_basis(aabb, points);
     }
     let obb = Obb::on_basis(axes, points);
-    let lengths = extremes.aabb_lengths();
-    if (obb.surface_area() as f64) < 2.0 * half_area(lengths) {
+    if rank(obb.half_extents.as_dvec3() * 2.0) < rank(extremes.aabb_lengths()) {
         obb
     } else {
         Obb::on_basis(aabb, points)
@@ -63,10 +72,18 @@ impl<const N: usize> Extremes<N> {
     /// point instead, and the final box is refit on all points anyway.
     fn of(points: &[Vec3]) -> Self {
         // Whole vectors of lanes: 8 for DiTO-14, 16 for DiTO-26.
-        let (lo, lo_at, hi, hi_at) =
-            if N <= 8 { scan::<N, 8>(points) } else { scan::<N, 16>(points) };
+        let (lo, lo_at, hi, hi_at) = if N <= 8 {
+            scan::<N, 8>(points)
+        } else {
+            scan::<N, 16>(points)
+        };
         let at = |j: usize| points[j].as_dvec3();
-        Extremes { lo, hi, lo_point: lo_at.map(at), hi_point: hi_at.map(at) }
+        Extremes {
+            lo,
+            hi,
+            lo_point: lo_at.map(at),
+            hi_point: hi_at.map(at),
+        }
     }
 
     /// The AABB's side lengths: the first three directions are the axes, whose
@@ -84,14 +101,20 @@ impl<const N: usize> Extremes<N> {
         self.lo_point.iter().chain(&self.hi_point).copied()
     }
 
-    /// The best axis triple on the extremes, or the identity when the AABB's
-    /// axes do at least as well or all points coincide.
-    fn best_axes(&self) -> DMat3 {
-        let mut best = Best { axes: DMat3::IDENTITY, area: half_area(self.aabb_lengths()) };
+    /// The best axis triple on the extremes of `all`, or the identity when the
+    /// AABB's axes do at least as well or all points coincide.
+    fn best_axes(&self, all: &[Vec3]) -> DMat3 {
+        let mut best = Best {
+            axes: DMat3::IDENTITY,
+            rank: rank(self.aabb_lengths()),
+        };
         // Base triangle, first edge: the farthest pair of extremes along one direction.
         let Some((p0, p1)) = (0..N)
             .map(|i| (self.lo_point[i], self.hi_point[i]))
-            .max_by(|a, b| a.0.distance_squared(a.1).total_cmp(&b.0.distance_squared(b.1)))
+            .max_by(|a, b| {
+                a.0.distance_squared(a.1)
+                    .total_cmp(&b.0.distance_squared(b.1))
+            })
         else {
             return best.axes;
         };
@@ -102,19 +125,27 @@ impl<const N: usize> Extremes<N> {
         let e0 = (p1 - p0) / length;
         // Third vertex: the extreme farthest from the line of p0 and p1.
         let line_distance = |q: DVec3| (q - p0).cross(e0).length();
-        let p2 = farthest(self.points(), line_distance);
+        let mut p2 = farthest(self.points(), line_distance);
         if line_distance(p2) <= FLAT * length {
-            // Degenerate case 2 of the paper: the extremes are collinear; align
-            // the box with the line, any perpendicular axes.
-            best.consider(self.points(), basis(e0, e0.any_orthonormal_vector()));
-            return best.axes;
+            // Degenerate case 2 of the paper: the extremes are collinear, and the
+            // paper aligns the box with the line, any axes across it. The points
+            // may still span a plane, so look for the third vertex among all of
+            // them first (one more pass, in this rare case only).
+            p2 = farthest(all.iter().map(|p| p.as_dvec3()), line_distance);
+            if line_distance(p2) <= FLAT * length {
+                best.consider(self.points(), basis(e0, e0.any_orthonormal_vector()));
+                return best.axes;
+            }
         }
         best.triangle(self.points(), p0, p1, p2);
         // The tetrahedra on the extremes farthest above and below the base plane;
         // the paper skips one whose apex lies in the plane (flat input).
         let n = (p1 - p0).cross(p2 - p0).normalize();
         let height = |q: DVec3| (q - p0).dot(n);
-        for apex in [farthest(self.points(), height), farthest(self.points(), |q| -height(q))] {
+        for apex in [
+            farthest(self.points(), height),
+            farthest(self.points(), |q| -height(q)),
+        ] {
             if height(apex).abs() > FLAT * length {
                 best.triangle(self.points(), apex, p0, p1);
                 best.triangle(self.points(), apex, p1, p2);
@@ -127,11 +158,16 @@ impl<const N: usize> Extremes<N> {
 
 /// The extreme projections on the `N` directions and the first points that
 /// attain them (least, then greatest), computed on `L >= N` lanes.
-fn scan<const N: usize, const L: usize>(points: &[Vec3]) -> ([f32; N], [usize; N], [f32; N], [usize; N]) {
+fn scan<const N: usize, const L: usize>(
+    points: &[Vec3],
+) -> ([f32; N], [usize; N], [f32; N], [usize; N]) {
     let dirs = const { directions::<N>() };
     let lane = |k: usize| if k < N { as_vec3(dirs[k]) } else { Vec3::ZERO };
-    let (dx, dy, dz): ([f32; L], [f32; L], [f32; L]) =
-        (std::array::from_fn(|k| lane(k).x), std::array::from_fn(|k| lane(k).y), std::array::from_fn(|k| lane(k).z));
+    let (dx, dy, dz): ([f32; L], [f32; L], [f32; L]) = (
+        std::array::from_fn(|k| lane(k).x),
+        std::array::from_fn(|k| lane(k).y),
+        std::array::from_fn(|k| lane(k).z),
+    );
     let project = |i: usize, p: &Vec3| dx[i] * p.x + dy[i] * p.y + dz[i] * p.z;
     let (mut lo, mut hi) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
     let (mut lo_at, mut hi_at) = ([0usize; N], [0usize; N]);
@@ -145,7 +181,11 @@ fn scan<const N: usize, const L: usize>(points: &[Vec3]) -> ([f32; N], [usize; N
             }
         }
         let first = |i: usize, value: f32| {
-            b * BLOCK + block.iter().position(|p| project(i, p) == value).unwrap_or(0)
+            b * BLOCK
+                + block
+                    .iter()
+                    .position(|p| project(i, p) == value)
+                    .unwrap_or(0)
         };
         for i in 0..N {
             if block_lo[i] < lo[i] {
@@ -159,32 +199,40 @@ fn scan<const N: usize, const L: usize>(points: &[Vec3]) -> ([f32; N], [usize; N
     (lo, lo_at, hi, hi_at)
 }
 
-/// The best axis triple so far and its box's half area on the extremes.
+/// The best axis triple so far and its box's rank on the extremes.
 struct Best {
     axes: DMat3,
-    area: f64,
+    rank: (f64, f64),
 }
 
 impl Best {
     /// The three axis triples of a triangle: each edge, the normal, and their
     /// cross product.
-    fn triangle<I: Iterator<Item = DVec3> + Clone>(&mut self, points: I, a: DVec3, b: DVec3, c: DVec3) {
-        let Some(n) = (b - a).cross(c - a).try_normalize() else { return };
+    fn triangle<I: Iterator<Item = DVec3> + Clone>(
+        &mut self,
+        points: I,
+        a: DVec3,
+        b: DVec3,
+        c: DVec3,
+    ) {
+        let Some(n) = (b - a).cross(c - a).try_normalize() else {
+            return;
+        };
         for edge in [b - a, c - b, a - c] {
             self.consider(points.clone(), basis(n, edge));
         }
     }
 
-    /// Keeps `axes` if their box on `points` has less area than the best so far.
+    /// Keeps `axes` if their box on `points` is smaller than the best so far.
     fn consider<I: Iterator<Item = DVec3>>(&mut self, points: I, axes: DMat3) {
         let at = axes.transpose();
         let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
             let k = at * p;
             (lo.min(k), hi.max(k))
         });
-        let area = half_area(hi - lo);
-        if area < self.area {
-            *self = Best { axes, area };
+        let rank = rank(hi - lo);
+        if rank < self.rank {
+            *self = Best { axes, rank };
         }
     }
 }
@@ -193,12 +241,22 @@ impl Best {
 fn farthest<I: Iterator<Item = DVec3>>(points: I, key: impl Fn(DVec3) -> f64) -> DVec3 {
     points
         .map(|p| (key(p), p))
-        .fold((f64::NEG_INFINITY, DVec3::ZERO), |best, c| if c.0 > best.0 { c } else { best })
+        .fold((f64::NEG_INFINITY, DVec3::ZERO), |best, c| {
+            if c.0 > best.0 { c } else { best }
+        })
         .1
 }
 
-/// Half the surface area of a box with side lengths `l`: the paper's quality
-/// measure, which unlike volume still ranks flat boxes.
-fn half_area(l: DVec3) -> f64 {
-    l.x * l.y + l.y * l.z + l.z * l.x
+/// How a box with side lengths `l` ranks, least first: by volume, then half
+/// its surface area; a flat box (its thinnest side below `FLAT_BOX` of its
+/// longest) has zero volume, so that rounding noise in a thickness never ranks
+/// a flat box behind another.
+fn rank(l: DVec3) -> (f64, f64) {
+    let area = l.x * l.y + l.y * l.z + l.z * l.x;
+    let volume = if l.min_element() <= FLAT_BOX * l.max_element() {
+        0.0
+    } else {
+        l.x * l.y * l.z
+    };
+    (volume, area)
 }

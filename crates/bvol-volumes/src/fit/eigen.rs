@@ -21,9 +21,13 @@ const MAX_SWEEPS: usize = 32;
 /// Only the upper triangle of `m` is read.
 pub(crate) fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
     // Scale to unit size so that squares of entries neither overflow nor vanish.
-    let scale = [m.x_axis.abs().max_element(), m.y_axis.abs().max_element(), m.z_axis.abs().max_element()]
-        .into_iter()
-        .fold(0.0, f64::max);
+    let scale = [
+        m.x_axis.abs().max_element(),
+        m.y_axis.abs().max_element(),
+        m.z_axis.abs().max_element(),
+    ]
+    .into_iter()
+    .fold(0.0, f64::max);
     if !(scale > 0.0 && scale.is_finite()) {
         return (DVec3::ZERO, DMat3::IDENTITY);
     }
@@ -133,7 +137,10 @@ mod tests {
             let mut want = l.to_array();
             want.sort_by(|a, b| b.total_cmp(a));
             for (got, want) in values.to_array().iter().zip(want) {
-                assert!((got - want).abs() <= 1e-12 * l.max_element(), "{values} vs {l}");
+                assert!(
+                    (got - want).abs() <= 1e-12 * l.max_element(),
+                    "{values} vs {l}"
+                );
             }
         }
     }

@@ -4,8 +4,8 @@
 //! `n` the best rotation is the minimum-area rectangle around the hull's
 //! shadow on the plane of `n` (see `min_rect`), so the volume becomes a
 //! function of `n` alone, `V(n) = height(n) * rect(n)`, over two degrees of
-//! freedom. It is sampled at the candidates that the exact algorithms
-//! enumerate, and the best few are polished by local descent:
+//! freedom. It is evaluated at the candidates that the exact algorithms
+//! enumerate, and the best is polished by local descent:
 //!
 //! - a box face flush with each hull face (`n` a face normal; the optimum when
 //!   some box face is flush with a hull face);
@@ -16,10 +16,15 @@
 //!   face is flush with a hull face; the regular tetrahedron, whose optimum is
 //!   its circumscribed cube, is found only this way;
 //! - the axes of the PCA-hull and DiTO boxes;
-//! - Nelder-Mead descent on `V(n)` (Nelder & Mead 1965) from the best few,
+//! - Nelder-Mead descent on `V(n)` (Nelder & Mead 1965) from the best of them,
 //!   cycling `n` through the three axes of the current box, so that each box
 //!   axis in turn gets its rotation optimised: a descent over all three degrees
 //!   of freedom of a rotation.
+//!
+//! Candidates are evaluated best-first by a lower bound, `height(n)` times the
+//! area of the shadow (which costs a fraction of the rectangle), until the
+//! bound reaches the best volume found. On large hulls the work is bounded:
+//! the largest faces and the longest edges go first.
 //!
 //! The result is never worse than the PCA-hull or DiTO boxes of the same input:
 //! those are compared last, as the f32 boxes they are.
@@ -31,24 +36,27 @@ use super::{dito::dito, pca::hull_axes};
 use crate::obb::basis;
 use crate::{ConvexHull, Obb};
 
-/// How many of the best candidates are polished.
-const POLISHED: usize = 4;
-
 /// A bound on the work of the edge-pair search, in face and edge tests: every
 /// pair of edges while the hull is small, the longest first edges against all
 /// others on large hulls.
 const PAIR_WORK: usize = 1 << 21;
 
+/// A bound on the work of the face candidates, in vertices, faces and edges
+/// visited (each evaluation visits them all): every face up to hulls of a few
+/// thousand vertices, the largest faces on larger ones.
+const FACE_WORK: usize = 1 << 25;
+
 /// Nelder-Mead's first step, in radians: a few degrees, about the reach of one
 /// candidate's basin.
 const FIRST_STEP: f64 = 0.05;
 
-/// Nelder-Mead stops when its simplex is this small, in radians: far below any
-/// volume change that f32 boxes can show.
-const LAST_STEP: f64 = 1e-9;
+/// Nelder-Mead stops when its simplex is this small, in radians: a change of
+/// axes that moves the box's volume by about that fraction, at the limit of
+/// what f32 boxes show.
+const LAST_STEP: f64 = 1e-6;
 
 /// A bound on function evaluations per descent.
-const MAX_EVALS: usize = 160;
+const MAX_EVALS: usize = 60;
 
 /// Rounds of cycling the descent through the three axes of the best box.
 const MAX_ROUNDS: usize = 4;
@@ -60,23 +68,33 @@ pub(crate) fn min_volume(points: &[Vec3]) -> Obb {
         return dito::<13>(points);
     };
     let pca = hull_axes(&hull);
-    let baselines = [Obb::on_basis(pca, points), dito::<7>(points), dito::<13>(points)];
+    let baselines = [
+        Obb::on_basis(pca, points),
+        dito::<7>(points),
+        dito::<13>(points),
+    ];
     let axes = match hull.dimension() {
         3 => search(&hull, &baselines),
-        2 => flat_axes(&hull, pca.z_axis),
+        2 => flat_axes(&hull, hull.face_normal(0)),
         // A segment or a point: the principal axis runs along it.
         _ => pca,
     };
     let searched = Obb::on_basis(axes, points);
-    baselines.into_iter().fold(searched, |best, b| if b.volume() < best.volume() { b } else { best })
+    baselines.into_iter().fold(
+        searched,
+        |best, b| if b.volume() < best.volume() { b } else { best },
+    )
 }
 
 /// The box of a flat hull: its plane's normal, and the minimum-area rectangle
 /// of its vertices in that plane.
 fn flat_axes(hull: &ConvexHull, normal: DVec3) -> DMat3 {
     let (t1, t2) = normal.any_orthonormal_pair();
-    let mut flat: Vec<DVec2> =
-        hull.vertices().iter().map(|p| DVec2::new(p.as_dvec3().dot(t1), p.as_dvec3().dot(t2))).collect();
+    let mut flat: Vec<DVec2> = hull
+        .vertices()
+        .iter()
+        .map(|p| DVec2::new(p.as_dvec3().dot(t1), p.as_dvec3().dot(t2)))
+        .collect();
     let rect = min_area_rect(&mut flat, &mut Vec::new());
     basis(normal, t1 * rect.side.x + t2 * rect.side.y)
 }
@@ -85,25 +103,34 @@ fn flat_axes(hull: &ConvexHull, normal: DVec3) -> DMat3 {
 fn search(hull: &ConvexHull, baselines: &[Obb]) -> DMat3 {
     let shape = Shape::new(hull);
     let mut eval = Evaluator::new(&shape);
-    let mut best = Best::default();
-    // Baselines first: they are good, and make the pruning bound tight early.
-    for axes in baselines.iter().map(|b| b.axes.as_dmat3()) {
-        for j in 0..3 {
-            best.offer(eval.box_along(axes.col(j), f64::INFINITY));
+    let mut axes: Vec<DVec3> = baselines
+        .iter()
+        .flat_map(|b| b.axes.as_dmat3().to_cols_array_2d())
+        .map(DVec3::from_array)
+        .collect();
+    axes.extend(shape.largest_faces().map(|f| shape.normal(f)));
+    edge_pairs(&shape, |n| axes.push(n));
+    // Best-first by the lower bound, until it reaches the best box.
+    let mut order: Vec<(f64, usize)> = axes
+        .iter()
+        .enumerate()
+        .map(|(i, &n)| (eval.lower_bound(n), i))
+        .collect();
+    order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+    let mut best = Candidate {
+        volume: f64::INFINITY,
+        axes: DMat3::IDENTITY,
+    };
+    for (bound, i) in order {
+        if bound >= best.volume {
+            break;
+        }
+        let c = eval.fit(axes[i]);
+        if c.volume < best.volume {
+            best = c;
         }
     }
-    for &n in &shape.normals {
-        best.offer(eval.box_along(n, best.bound()));
-    }
-    edge_pairs(&shape, |n| best.offer(eval.box_along(n, best.bound())));
-    best.kept
-        .iter()
-        .map(|&c| polish(&mut eval, c))
-        .fold(None::<Candidate>, |b, c| match b {
-            Some(b) if b.volume <= c.volume => Some(b),
-            _ => Some(c),
-        })
-        .map_or(DMat3::IDENTITY, |c| c.axes)
+    polish(&mut eval, best).axes
 }
 
 /// A convex hull as the search reads it, in f64 about the mean of its
@@ -111,7 +138,8 @@ fn search(hull: &ConvexHull, baselines: &[Obb]) -> DMat3 {
 /// faces that meet there.
 struct Shape {
     vertices: Vec<DVec3>,
-    normals: Vec<DVec3>,
+    /// The normals' coordinates, apart so that passes over faces run on vectors.
+    normals: [Vec<f64>; 3],
     areas: Vec<f64>,
     edges: Vec<Edge>,
 }
@@ -135,16 +163,41 @@ impl Shape {
         let areas = (0..faces)
             .map(|f| {
                 let ring = hull.face(f);
-                let twice = ring.iter().zip(ring.iter().cycle().skip(1)).fold(DVec3::ZERO, |s, (&a, &b)| {
-                    s + vertices[a as usize].cross(vertices[b as usize])
-                });
+                let twice = ring
+                    .iter()
+                    .zip(ring.iter().cycle().skip(1))
+                    .fold(DVec3::ZERO, |s, (&a, &b)| {
+                        s + vertices[a as usize].cross(vertices[b as usize])
+                    });
                 0.5 * twice.dot(normals[f]).abs()
             })
             .collect();
-        Shape { edges: edges(hull), vertices, normals, areas }
+        Shape {
+            edges: edges(hull),
+            vertices,
+            normals: std::array::from_fn(|k| normals.iter().map(|n| n[k]).collect()),
+            areas,
+        }
     }
 
-    /// The unit direction and length of an edge.
+    /// The faces whose normals are face candidates, largest first: all of
+    /// them unless that is more than `FACE_WORK`.
+    fn largest_faces(&self) -> impl Iterator<Item = usize> {
+        let mut faces: Vec<usize> = (0..self.areas.len()).collect();
+        let per_face = self.vertices.len() + self.areas.len() + self.edges.len();
+        if faces.len() * per_face > FACE_WORK {
+            faces.sort_by(|&f, &g| self.areas[g].total_cmp(&self.areas[f]).then(f.cmp(&g)));
+            faces.truncate(FACE_WORK / per_face);
+        }
+        faces.into_iter()
+    }
+
+    /// The unit outward normal of face `f`.
+    fn normal(&self, f: usize) -> DVec3 {
+        DVec3::new(self.normals[0][f], self.normals[1][f], self.normals[2][f])
+    }
+
+    /// An edge as a vector, from its first vertex to its second.
     fn edge_vector(&self, e: &Edge) -> DVec3 {
         self.vertices[e.ends[1] as usize] - self.vertices[e.ends[0] as usize]
     }
@@ -166,7 +219,10 @@ fn edges(hull: &ConvexHull) -> Vec<Edge> {
     sides
         .chunk_by(|x, y| x.0 == y.0)
         .filter_map(|c| match c {
-            [(ends, f), (_, g)] => Some(Edge { ends: *ends, faces: [*f, *g] }),
+            [(ends, f), (_, g)] => Some(Edge {
+                ends: *ends,
+                faces: [*f, *g],
+            }),
             _ => None,
         })
         .collect()
@@ -179,39 +235,15 @@ struct Candidate {
     axes: DMat3,
 }
 
-/// The best few distinct candidates so far, least volume first.
-#[derive(Default)]
-struct Best {
-    kept: Vec<Candidate>,
-}
-
-impl Best {
-    /// The volume a candidate must beat to be kept.
-    fn bound(&self) -> f64 {
-        if self.kept.len() < POLISHED { f64::INFINITY } else { self.kept[POLISHED - 1].volume }
-    }
-
-    /// Keeps a candidate that beats the bound, unless one of the same volume
-    /// (to rounding: most likely the same box, found twice) is kept already.
-    fn offer(&mut self, c: Option<Candidate>) {
-        let Some(c) = c.filter(|c| c.volume < self.bound()) else { return };
-        if self.kept.iter().any(|k| (k.volume - c.volume).abs() <= 1e-9 * c.volume) {
-            return;
-        }
-        let at = self.kept.partition_point(|k| k.volume <= c.volume);
-        self.kept.insert(at, c);
-        self.kept.truncate(POLISHED);
-    }
-}
-
 /// Evaluates `V(n)` on a shape, with scratch space reused between calls.
 struct Evaluator<'a> {
     shape: &'a Shape,
     /// Whether each face faces along `n`.
     front: Vec<bool>,
-    /// When each vertex was last put in the shadow, to put it in once.
-    stamp: Vec<u32>,
-    call: u32,
+    /// The call in which each vertex was last put in the shadow, to put it in
+    /// once (a u64 count never wraps).
+    stamp: Vec<u64>,
+    call: u64,
     /// The silhouette vertices projected on the plane of `n`, and their hull.
     shadow: Vec<DVec2>,
     ring: Vec<DVec2>,
@@ -221,7 +253,7 @@ impl<'a> Evaluator<'a> {
     fn new(shape: &'a Shape) -> Self {
         Evaluator {
             shape,
-            front: vec![false; shape.normals.len()],
+            front: vec![false; shape.areas.len()],
             stamp: vec![0; shape.vertices.len()],
             call: 0,
             shadow: Vec::new(),
@@ -229,31 +261,57 @@ impl<'a> Evaluator<'a> {
         }
     }
 
-    /// The least-volume box with `n` (unit) as an axis, or `None` when it
-    /// cannot have less volume than `bound`. The rectangle encloses the hull's
-    /// shadow, whose area (half the sum of `|n . normal| area` over the faces)
-    /// gives a bound cheaper than the rectangle.
-    fn box_along(&mut self, n: DVec3, bound: f64) -> Option<Candidate> {
+    /// A lower bound on `V(n)`, `n` unit: the height times the area of the
+    /// hull's shadow on the plane of `n` (half the sum of `|n . normal| area`
+    /// over the faces), which the rectangle encloses. Also marks the faces
+    /// that face along `n`, for [`Evaluator::fit`]. Returns the height too.
+    fn measure(&mut self, n: DVec3) -> (f64, f64) {
         let s = self.shape;
-        let (lo, hi) = s.vertices.iter().fold((f64::INFINITY, f64::NEG_INFINITY), |(lo, hi), v| {
+        // Four independent running extremes and sums: a single one would be
+        // a chain of dependent instructions, four keep the pipeline full.
+        let (mut lo, mut hi) = ([f64::INFINITY; 4], [f64::NEG_INFINITY; 4]);
+        let chunks = s.vertices.chunks_exact(4);
+        let rest = chunks.remainder();
+        for quad in chunks {
+            for (j, v) in quad.iter().enumerate() {
+                let k = v.dot(n);
+                lo[j] = if k < lo[j] { k } else { lo[j] };
+                hi[j] = if k > hi[j] { k } else { hi[j] };
+            }
+        }
+        for (j, v) in rest.iter().enumerate() {
             let k = v.dot(n);
-            (lo.min(k), hi.max(k))
-        });
-        let height = hi - lo;
-        let mut shadow_area = 0.0;
-        for ((front, normal), area) in self.front.iter_mut().zip(&s.normals).zip(&s.areas) {
-            let k = normal.dot(n);
+            lo[j] = if k < lo[j] { k } else { lo[j] };
+            hi[j] = if k > hi[j] { k } else { hi[j] };
+        }
+        let height = hi.into_iter().fold(f64::NEG_INFINITY, f64::max)
+            - lo.into_iter().fold(f64::INFINITY, f64::min);
+        let mut shadow = [0.0; 4];
+        let [x, y, z] = &s.normals;
+        let faces = self.front.iter_mut().zip(x).zip(y).zip(z).zip(&s.areas);
+        for (f, ((((front, x), y), z), area)) in faces.enumerate() {
+            let k = x * n.x + y * n.y + z * n.z;
             *front = k > 0.0;
-            shadow_area += k.abs() * area;
+            shadow[f & 3] += k.abs() * area;
         }
-        if height * 0.5 * shadow_area >= bound {
-            return None;
-        }
+        (height * 0.5 * shadow.iter().sum::<f64>(), height)
+    }
+
+    /// A lower bound on `V(n)`: see [`Evaluator::measure`].
+    fn lower_bound(&mut self, n: DVec3) -> f64 {
+        self.measure(n).0
+    }
+
+    /// `V(n)` and its box, `n` unit: the height times the minimum-area
+    /// rectangle around the hull's shadow.
+    fn fit(&mut self, n: DVec3) -> Candidate {
+        let s = self.shape;
+        let (_, height) = self.measure(n);
         // The shadow's outline comes from the silhouette: edges between a face
         // facing along n and one that does not. Every vertex of the shadow's
         // hull is on it, a small fraction of the vertices.
         let (t1, t2) = n.any_orthonormal_pair();
-        self.call = self.call.wrapping_add(1);
+        self.call += 1;
         self.shadow.clear();
         for e in &s.edges {
             if self.front[e.faces[0] as usize] == self.front[e.faces[1] as usize] {
@@ -268,12 +326,10 @@ impl<'a> Evaluator<'a> {
         }
         let rect = min_area_rect(&mut self.shadow, &mut self.ring);
         let axes = basis(n, t1 * rect.side.x + t2 * rect.side.y);
-        Some(Candidate { volume: height * rect.area, axes })
-    }
-
-    /// `V(n)` and its box, never pruned.
-    fn fit(&mut self, n: DVec3) -> Candidate {
-        self.box_along(n, f64::INFINITY).unwrap_or(Candidate { volume: f64::INFINITY, axes: basis(n, DVec3::ZERO) })
+        Candidate {
+            volume: height * rect.area,
+            axes,
+        }
     }
 }
 
@@ -285,7 +341,7 @@ impl<'a> Evaluator<'a> {
 /// part, which rejects most pairs, is a sign test per face, done once per
 /// first edge.
 fn edge_pairs(shape: &Shape, mut visit: impl FnMut(DVec3)) {
-    let (nf, ne) = (shape.normals.len(), shape.edges.len());
+    let (nf, ne) = (shape.areas.len(), shape.edges.len());
     let every_pair = ne * (nf + ne) / 2 <= PAIR_WORK;
     let mut firsts: Vec<usize> = (0..ne).collect();
     if !every_pair {
@@ -294,13 +350,14 @@ fn edge_pairs(shape: &Shape, mut visit: impl FnMut(DVec3)) {
         firsts.truncate(PAIR_WORK / (nf + ne).max(1));
     }
     let mut side = vec![0.0; nf];
-    let normal = |f: u32| shape.normals[f as usize];
+    let normal = |f: u32| shape.normal(f as usize);
+    let [nx, ny, nz] = &shape.normals;
     for i in firsts {
         let e1 = shape.edges[i];
         let (a, b) = (normal(e1.faces[0]), normal(e1.faces[1]));
         let bxa = b.cross(a);
-        for (s, n) in side.iter_mut().zip(&shape.normals) {
-            *s = n.dot(bxa);
+        for (((s, x), y), z) in side.iter_mut().zip(nx).zip(ny).zip(nz) {
+            *s = x * bxa.x + y * bxa.y + z * bxa.z;
         }
         let d1 = shape.edge_vector(&e1);
         let seconds = if every_pair { i + 1..ne } else { 0..ne };
@@ -322,7 +379,8 @@ fn edge_pairs(shape: &Shape, mut visit: impl FnMut(DVec3)) {
 }
 
 /// Local descent from a candidate: Nelder-Mead on `V(n)` about each of its
-/// axes in turn, until a round gains nothing.
+/// axes in turn, until a round gains nothing. Every box has its three axes
+/// among the `n` that `V` is a function of, so this descends over rotations.
 fn polish(eval: &mut Evaluator, start: Candidate) -> Candidate {
     let mut best = start;
     for _ in 0..MAX_ROUNDS {
@@ -342,7 +400,12 @@ fn polish(eval: &mut Evaluator, start: Candidate) -> Candidate {
 fn descend(eval: &mut Evaluator, n0: DVec3, best: Candidate) -> Candidate {
     let (t1, t2) = n0.any_orthonormal_pair();
     let along = |x: DVec2| (n0 + t1 * x.x + t2 * x.y).normalize();
-    let x = nelder_mead(|x| eval.fit(along(x)).volume, FIRST_STEP, LAST_STEP, MAX_EVALS);
+    let x = nelder_mead(
+        |x| eval.fit(along(x)).volume,
+        FIRST_STEP,
+        LAST_STEP,
+        MAX_EVALS,
+    );
     let c = eval.fit(along(x));
     if c.volume < best.volume { c } else { best }
 }
@@ -385,5 +448,7 @@ fn nelder_mead(mut f: impl FnMut(DVec2) -> f64, first: f64, last: f64, max_evals
             }
         }
     }
-    s.iter().min_by(|a, b| a.1.total_cmp(&b.1)).map_or(DVec2::ZERO, |b| b.0)
+    s.iter()
+        .min_by(|a, b| a.1.total_cmp(&b.1))
+        .map_or(DVec2::ZERO, |b| b.0)
 }

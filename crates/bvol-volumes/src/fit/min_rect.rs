@@ -6,6 +6,11 @@
 
 use glam::DVec2;
 
+/// Distance from a hull edge, relative to the set's extent, below which a
+/// vertex counts as on it: far above the rounding of coordinates computed in
+/// f64 (about 1e-16 of the extent), far below anything a box's volume shows.
+const SLIVER: f64 = 1e-12;
+
 /// A rectangle around a point set: its area and the unit direction of one of
 /// its sides (the other is perpendicular).
 #[derive(Clone, Copy, Debug)]
@@ -25,28 +30,40 @@ pub(crate) fn min_area_rect(points: &mut [DVec2], hull: &mut Vec<DVec2>) -> Rect
     calipers(hull)
 }
 
-/// The convex hull, counter-clockwise, without repeated or collinear vertices
-/// (Andrew's monotone chain: the lower then the upper chain of the points
-/// sorted by x, then y).
+/// The convex hull, counter-clockwise (Andrew's monotone chain: the lower then
+/// the upper chain of the points sorted by x, then y). A vertex within a
+/// rounding-level distance (`SLIVER` of the set's extent) of the line through
+/// its neighbours is dropped: near-duplicates and near-collinear runs would
+/// give edges of meaningless direction and turns of either sign, and the
+/// calipers rely on a strictly convex polygon.
 pub(crate) fn convex_hull(points: &mut [DVec2], hull: &mut Vec<DVec2>) {
     points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
+    let (lo, hi) = points
+        .iter()
+        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
+            (lo.min(p), hi.max(p))
+        });
+    let tolerance = SLIVER * (hi - lo).max_element();
     hull.clear();
     for &p in points.iter() {
-        push_convex(hull, p, 2);
+        push_convex(hull, p, 2, tolerance);
     }
     let lower = hull.len() + 1;
     for &p in points.iter().rev().skip(1) {
-        push_convex(hull, p, lower);
+        push_convex(hull, p, lower, tolerance);
     }
     hull.pop(); // the first point again
 }
 
-/// Pushes `p` after removing the vertices that it would make non-convex (no
-/// strict left turn), keeping at least `keep - 1` of them.
-fn push_convex(hull: &mut Vec<DVec2>, p: DVec2, keep: usize) {
+/// Pushes `p` after removing the vertices that it would make non-convex: those
+/// not strictly left of the line from their predecessor to `p` by more than
+/// `tolerance`. Keeps at least `keep - 1` vertices.
+fn push_convex(hull: &mut Vec<DVec2>, p: DVec2, keep: usize, tolerance: f64) {
     while hull.len() >= keep {
         let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
-        if (b - a).perp_dot(p - a) > 0.0 {
+        // b's distance from the line through a and p, squared, against the tolerance.
+        let cross = (p - a).perp_dot(b - a);
+        if cross < 0.0 && cross * cross > tolerance * tolerance * (p - a).length_squared() {
             break;
         }
         hull.pop();
@@ -67,28 +84,47 @@ pub(crate) fn calipers(hull: &[DVec2]) -> Rect {
         };
         return Rect { area: 0.0, side };
     }
-    let at = |i: usize| hull[i % k];
+    let next = |i: usize| if i + 1 == k { 0 } else { i + 1 };
     // Moves a caliper forward while `key` grows: strict, so it always stops.
-    let climb = |mut i: usize, key: &dyn Fn(DVec2) -> f64| {
-        while key(at(i + 1)) > key(at(i)) {
-            i += 1;
+    // Calipers mostly move zero, one or two vertices per edge: those steps are
+    // selects, so that only the rare longer moves cost a mispredicted branch.
+    let step = |i: usize, key: DVec2| {
+        let j = next(i);
+        if hull[j].dot(key) > hull[i].dot(key) {
+            j
+        } else {
+            i
         }
-        i
     };
-    let mut best = Rect { area: f64::INFINITY, side: DVec2::X };
+    let climb = |i: usize, key: DVec2| {
+        let mut j = step(step(i, key), key);
+        loop {
+            let k = step(j, key);
+            if k == j {
+                return j;
+            }
+            j = k;
+        }
+    };
+    let (mut best_area, mut best_side) = (f64::INFINITY, DVec2::X);
     let (mut right, mut top, mut left) = (0, 0, 0);
     for i in 0..k {
-        let Some(u) = (at(i + 1) - at(i)).try_normalize() else { continue };
+        // Unnormalised: the scale of the edge cancels in the area.
+        let u = hull[next(i)] - hull[i];
         let w = u.perp(); // inward: the polygon lies to the left of its edges
-        right = climb(right.max(i), &|p| p.dot(u));
-        top = climb(top.max(right), &|p| p.dot(w));
-        left = climb(left.max(top), &|p| -p.dot(u));
-        let area = (at(right) - at(left)).dot(u) * (at(top) - at(i)).dot(w);
-        if area < best.area {
-            best = Rect { area, side: u };
+        right = climb(right, u);
+        top = climb(if i == 0 { right } else { top }, w);
+        left = climb(if i == 0 { top } else { left }, -u);
+        let area =
+            (hull[right] - hull[left]).dot(u) * (hull[top] - hull[i]).dot(w) / u.length_squared();
+        if area < best_area {
+            (best_area, best_side) = (area, u);
         }
     }
-    if best.area.is_finite() { best } else { Rect { area: 0.0, side: DVec2::X } }
+    Rect {
+        area: best_area,
+        side: best_side.normalize(),
+    }
 }
 
 #[cfg(test)]
@@ -106,7 +142,10 @@ mod tests {
     }
 
     fn points(max: usize) -> impl Strategy<Value = Vec<DVec2>> {
-        prop::collection::vec((-1.0f64..1.0, -1.0f64..1.0).prop_map(|(x, y)| DVec2::new(x, y)), 1..max)
+        prop::collection::vec(
+            (-1.0f64..1.0, -1.0f64..1.0).prop_map(|(x, y)| DVec2::new(x, y)),
+            1..max,
+        )
     }
 
     proptest! {
@@ -147,7 +186,9 @@ mod tests {
             for i in 0..hull.len() {
                 let (a, b) = (hull[i], hull[(i + 1) % hull.len()]);
                 for p in &points {
-                    prop_assert!((b - a).perp_dot(*p - a) >= -1e-12, "{p} right of {a} {b}");
+                    // Outside by no more than the rounding-level tolerance.
+                    let distance = (b - a).perp_dot(*p - a) / (b - a).length();
+                    prop_assert!(distance >= -4.0 * SLIVER, "{p} right of {a} {b}");
                 }
             }
         }

@@ -22,9 +22,9 @@ use crate::Sphere;
 const OUTSIDE: f64 = 1e-12;
 
 /// A point joins the support only if its distance to the affine hull of the
-/// support, squared and doubled, exceeds this fraction of `r^2` (Gärtner's
-/// `z_m < eps * r^2` test, section 4): a nearly dependent point would give a
-/// huge, ill-conditioned ball. Such a point is dropped here; if it is really
+/// support, squared and doubled, exceeds this fraction of `r^2` (the test
+/// `z_m < eps * r^2` of Gärtner's `push`): a nearly dependent point would give
+/// a huge, ill-conditioned ball. Such a point is dropped here; if it is really
 /// outside, the pivoting loop brings it back as the first point of a support.
 const DEPENDENT: f64 = 1e-20;
 
@@ -46,8 +46,8 @@ pub(crate) fn min_sphere_f64(points: &[DVec3]) -> (DVec3, f64) {
     (center + origin, radius2.sqrt())
 }
 
-/// Gärtner's `pivot_mb` (1999, fig. 4) over all points, given in local
-/// coordinates by `local`: returns the centre (local) and squared radius.
+/// Gärtner's `pivot_mb` over all points, given in local coordinates by
+/// `local`: returns the centre (local) and the squared radius.
 ///
 /// The ball is always the smallest one with the pivot on its boundary holding
 /// the previous support; its radius grows strictly each round, so the loop
@@ -94,7 +94,7 @@ fn farthest<P: Copy>(points: &[P], local: impl Fn(P) -> DVec3, center: DVec3) ->
     best
 }
 
-/// Welzl's move-to-front recursion (Gärtner 1999, fig. 2) over `front[..end]`,
+/// Welzl's move-to-front recursion (Gärtner's `mtf_mb`) over `front[..end]`,
 /// with the points already in `ball` held on the boundary. Points found
 /// outside are pushed, solved for recursively, and moved to the front of the
 /// list. Returns how many points at the front of `front` support the ball.
@@ -118,7 +118,7 @@ fn move_to_front(ball: &mut Basis, front: &mut [DVec3; 4], end: usize) -> usize 
 }
 
 /// The smallest ball through up to 4 affinely independent points, built one
-/// point at a time (Gärtner 1999, section 3, "Miniball_b"). Each new point
+/// point at a time (Gärtner 1999, class `Miniball_b`). Each new point
 /// `q_m` adds `v_m`, the part of `q_m - q_0` orthogonal to the earlier ones
 /// (Gram-Schmidt), and moves the centre along `v_m` just far enough to put
 /// `q_m` on the sphere: no linear system, no division by a determinant.

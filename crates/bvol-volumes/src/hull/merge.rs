@@ -3,17 +3,24 @@
 //! Regions grow from the largest triangles first, so each is seeded by its
 //! best-conditioned plane; a neighbour joins when its far corner lies within the
 //! tolerance of that plane and the region stays a disk (the rule that keeps a
-//! region's boundary one simple loop). A region whose loop is not convex within
-//! tolerance falls back to its triangles. Then a vertex left on only two faces,
-//! in line with its neighbours within tolerance, is taken out of both, so faces
-//! meet in straight edges; chains of such vertices are thinned by Douglas-Peucker.
-//! The result keeps the exact hull's topology: every edge in two faces, in
-//! opposite directions, and V - E + F = 2.
+//! region's boundary one simple loop). The seed's plane is the face's plane: as
+//! the plane of a triangle of the exact hull, every point kept lies behind it,
+//! and every corner of the face lies within tolerance of it, however thin the
+//! face. A region whose loop is not convex within tolerance falls back to its
+//! triangles. Then a vertex left on only two faces, in line with its neighbours
+//! within tolerance, is taken out of both, so faces meet in straight edges
+//! (chains of such vertices thinned by Douglas-Peucker). One not in line marks
+//! two regions meeting along a bent chain, which only nearly coplanar faces can
+//! do: they fall back to their triangles, so every vertex left is a corner of
+//! at least three faces. The result keeps the exact hull's topology: every edge
+//! in two faces, in opposite directions, and V - E + F = 2.
 
-use glam::DVec3;
+use glam::{DVec2, DVec3};
 
-use super::Frame;
+use super::planar::convex_chain;
+use super::predicates::cross_exact;
 use super::quickhull::Triangulation;
+use super::{Frame, douglas_peucker};
 
 /// No region.
 const NONE: u32 = u32::MAX;
@@ -25,6 +32,8 @@ pub(super) struct Polygons {
     pub loops: Vec<u32>,
     /// Where each face's loop starts in `loops`, plus the end.
     pub starts: Vec<u32>,
+    /// Each face's plane in the frame: unit outward normal and offset.
+    pub planes: Vec<(DVec3, f64)>,
 }
 
 impl Polygons {
@@ -38,39 +47,96 @@ impl Polygons {
         self.starts.len() - 1
     }
 
-    fn push(&mut self, face: impl IntoIterator<Item = u32>) {
+    fn push(&mut self, face: impl IntoIterator<Item = u32>, plane: (DVec3, f64)) {
         self.loops.extend(face);
         self.starts.push(self.loops.len() as u32);
+        self.planes.push(plane);
     }
 }
 
 /// The faces of the hull: coplanar triangles merged, collinear edge vertices removed.
 pub(super) fn merge(frame: &Frame, hull: &Triangulation) -> Polygons {
     let pos: Vec<DVec3> = hull.vertices.iter().map(|&i| frame.at(i)).collect();
-    let regions = grow_regions(frame.eps, &pos, hull);
-    let mut faces = Polygons { loops: Vec::new(), starts: vec![0] };
+    let area_vectors: Vec<DVec3> = hull
+        .corners
+        .iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|v| frame.exact(hull.vertices[v as usize]));
+            cross_exact(a, b, c)
+        })
+        .collect();
+    let regions = grow_regions(frame.eps, &pos, &area_vectors, hull);
+    let mut merged = vec![true; regions.planes.len()];
+    loop {
+        let (mut faces, owners) =
+            polygons(hull, &regions, &pos, &area_vectors, frame.eps, &mut merged);
+        let bent = remove_edge_vertices(&mut faces, &pos, frame.eps);
+        let mut split = false;
+        for (f, &r) in owners.iter().enumerate() {
+            let r = r as usize;
+            if merged[r] && regions.len(r) > 1 && faces.face(f).iter().any(|&v| bent[v as usize]) {
+                merged[r] = false;
+                split = true;
+            }
+        }
+        // Each round splits a region, so this ends, at the latest with only
+        // triangles left, which leave no bent vertex (every vertex of the
+        // triangulation is a corner of three triangles at least).
+        if !split {
+            return faces;
+        }
+    }
+}
+
+/// One face per region still `merged` whose boundary is a simple convex loop,
+/// else one per triangle (and the region is marked not merged); with the region
+/// each face comes from.
+fn polygons(
+    hull: &Triangulation,
+    regions: &Regions,
+    pos: &[DVec3],
+    area_vectors: &[DVec3],
+    eps: f64,
+    merged: &mut [bool],
+) -> (Polygons, Vec<u32>) {
+    let mut faces = Polygons {
+        loops: Vec::new(),
+        starts: vec![0],
+        planes: Vec::new(),
+    };
+    let mut owners = Vec::new();
     let mut marks = vec![NONE; pos.len()];
     let mut ring = Vec::new();
     for (r, region) in regions.iter().enumerate() {
-        let convex = boundary_loop(hull, &regions.of, r as u32, region.tris, &mut ring)
-            && is_simple(&ring, &mut marks, r as u32)
-            && is_convex(&ring, &pos, region.normal, frame.eps);
-        if convex {
-            faces.push(ring.iter().copied());
+        let r = r as u32;
+        if let &[t] = region.tris {
+            // A lone triangle is its own face, with its own plane.
+            faces.push(hull.corners[t as usize], region.plane);
+            owners.push(r);
+            continue;
+        }
+        merged[r as usize] = merged[r as usize]
+            && boundary_loop(hull, &regions.of, r, region.tris, &mut ring)
+            && is_simple(&ring, &mut marks, r)
+            && is_convex(&ring, pos, region.plane.0, eps);
+        if merged[r as usize] {
+            faces.push(ring.iter().copied(), region.plane);
+            owners.push(r);
         } else {
             for &t in region.tris {
-                faces.push(hull.corners[t as usize]);
+                let corners = hull.corners[t as usize];
+                faces.push(corners, plane(area_vectors[t as usize], corners, pos));
+                owners.push(r);
             }
         }
     }
-    remove_edge_vertices(&mut faces, &pos, frame.eps);
-    faces
+    (faces, owners)
 }
 
-/// A region: its triangles and the unit normal of its seed.
+/// A region: its triangles and its seed's plane.
 struct Region<'a> {
     tris: &'a [u32],
-    normal: DVec3,
+    plane: (DVec3, f64),
 }
 
 /// Triangles grouped into planar disks.
@@ -80,42 +146,57 @@ struct Regions {
     /// Triangles in region order, and where each region starts.
     members: Vec<u32>,
     starts: Vec<usize>,
-    normals: Vec<DVec3>,
+    planes: Vec<(DVec3, f64)>,
 }
 
 impl Regions {
+    /// Number of triangles in region `r`.
+    fn len(&self, r: usize) -> usize {
+        self.starts[r + 1] - self.starts[r]
+    }
+
     fn iter(&self) -> impl Iterator<Item = Region<'_>> {
-        self.normals.iter().enumerate().map(|(r, &normal)| Region {
+        self.planes.iter().enumerate().map(|(r, &plane)| Region {
             tris: &self.members[self.starts[r]..self.starts[r + 1]],
-            normal,
+            plane,
         })
     }
 }
 
-/// Groups the triangles into regions within `eps` of their seed's plane, each a
-/// topological disk, seeds taken largest first (ties by index, for determinism).
-fn grow_regions(eps: f64, pos: &[DVec3], hull: &Triangulation) -> Regions {
+/// The plane of a triangle with the given area vector and corners: unit normal
+/// (zero if degenerate) and offset through its centroid.
+fn plane(area_vector: DVec3, corners: [u32; 3], pos: &[DVec3]) -> (DVec3, f64) {
+    let normal = area_vector.normalize_or_zero();
+    (
+        normal,
+        normal.dot(corners.map(|v| pos[v as usize]).iter().sum::<DVec3>()) / 3.0,
+    )
+}
+
+/// Groups the triangles into regions within `eps` of their seed's plane and
+/// facing its way, each a topological disk, seeds taken largest first (ties by
+/// index, for determinism).
+fn grow_regions(eps: f64, pos: &[DVec3], area_vectors: &[DVec3], hull: &Triangulation) -> Regions {
     let (corners, adjacent) = (&hull.corners, &hull.adjacent);
-    let area_normal = |t: usize| {
-        let [a, b, c] = corners[t].map(|v| pos[v as usize]);
-        (b - a).cross(c - a)
-    };
-    let areas: Vec<f64> = (0..corners.len()).map(|t| area_normal(t).length()).collect();
+    let areas: Vec<f64> = area_vectors.iter().map(|a| a.length()).collect();
     let mut order: Vec<u32> = (0..corners.len() as u32).collect();
-    order.sort_by(|&x, &y| areas[y as usize].total_cmp(&areas[x as usize]).then(x.cmp(&y)));
+    order.sort_unstable_by(|&x, &y| {
+        areas[y as usize]
+            .total_cmp(&areas[x as usize])
+            .then(x.cmp(&y))
+    });
 
     let mut of = vec![NONE; corners.len()];
     let mut marks = vec![NONE; pos.len()];
     let mut members = Vec::with_capacity(corners.len());
-    let (mut starts, mut normals) = (vec![0], Vec::new());
+    let (mut starts, mut planes) = (vec![0], Vec::new());
     for seed in order {
         if of[seed as usize] != NONE {
             continue;
         }
-        let r = normals.len() as u32;
-        let normal = area_normal(seed as usize).normalize_or_zero();
+        let r = planes.len() as u32;
         let [a, b, c] = corners[seed as usize];
-        let offset = normal.dot(pos[a as usize] + pos[b as usize] + pos[c as usize]) / 3.0;
+        let (normal, offset) = plane(area_vectors[seed as usize], [a, b, c], pos);
         of[seed as usize] = r;
         members.push(seed);
         for v in [a, b, c] {
@@ -132,8 +213,15 @@ fn grow_regions(eps: f64, pos: &[DVec3], hull: &Triangulation) -> Regions {
                     continue;
                 }
                 let (x, y) = (corners[t][e], corners[t][(e + 1) % 3]);
-                let w = corners[u].into_iter().find(|&v| v != x && v != y).unwrap_or(x);
-                if (normal.dot(pos[w as usize]) - offset).abs() > eps {
+                let w = corners[u]
+                    .into_iter()
+                    .find(|&v| v != x && v != y)
+                    .unwrap_or(x);
+                // Near the plane, and facing its way: a region folding over
+                // itself (round the tip of a needle) would hide a vertex.
+                if (normal.dot(pos[w as usize]) - offset).abs() > eps
+                    || normal.dot(area_vectors[u]) <= 0.0
+                {
                     continue;
                 }
                 // A corner already in the region: joining keeps a disk only if u
@@ -149,23 +237,38 @@ fn grow_regions(eps: f64, pos: &[DVec3], hull: &Triangulation) -> Regions {
             }
         }
         starts.push(members.len());
-        normals.push(normal);
+        planes.push((normal, offset));
     }
-    Regions { of, members, starts, normals }
+    Regions {
+        of,
+        members,
+        starts,
+        planes,
+    }
 }
 
 /// Walks the boundary of region `r` (triangles `tris`) into `ring`, turning
 /// around each corner inside the region to find the next boundary edge. False if
 /// the boundary is not one loop.
-fn boundary_loop(hull: &Triangulation, of: &[u32], r: u32, tris: &[u32], ring: &mut Vec<u32>) -> bool {
+fn boundary_loop(
+    hull: &Triangulation,
+    of: &[u32],
+    r: u32,
+    tris: &[u32],
+    ring: &mut Vec<u32>,
+) -> bool {
     ring.clear();
     let (corners, adjacent) = (&hull.corners, &hull.adjacent);
     let outside = |t: usize, e: usize| of[adjacent[t][e] as usize] != r;
-    let boundary = tris.iter().map(|&t| (0..3).filter(|&e| outside(t as usize, e)).count()).sum();
-    let Some(start) = tris
+    let boundary = tris
         .iter()
-        .find_map(|&t| (0..3).find(|&e| outside(t as usize, e)).map(|e| (t as usize, e)))
-    else {
+        .map(|&t| (0..3).filter(|&e| outside(t as usize, e)).count())
+        .sum();
+    let Some(start) = tris.iter().find_map(|&t| {
+        (0..3)
+            .find(|&e| outside(t as usize, e))
+            .map(|e| (t as usize, e))
+    }) else {
         return false;
     };
     let (mut t, mut e) = start;
@@ -176,7 +279,10 @@ fn boundary_loop(hull: &Triangulation, of: &[u32], r: u32, tris: &[u32], ring: &
         let mut turns = 0;
         while !outside(t, e) {
             let u = adjacent[t][e] as usize;
-            let back = adjacent[u].iter().position(|&x| x as usize == t).unwrap_or(0);
+            let back = adjacent[u]
+                .iter()
+                .position(|&x| x as usize == t)
+                .unwrap_or(0);
             (t, e) = (u, (back + 1) % 3);
             turns += 1;
             if turns > tris.len() {
@@ -194,32 +300,49 @@ fn boundary_loop(hull: &Triangulation, of: &[u32], r: u32, tris: &[u32], ring: &
 
 /// Whether no vertex repeats in `ring` (`marks` holds a per-vertex stamp; `r` is fresh).
 fn is_simple(ring: &[u32], marks: &mut [u32], r: u32) -> bool {
-    ring.iter().all(|&v| std::mem::replace(&mut marks[v as usize], r) != r)
+    ring.iter()
+        .all(|&v| std::mem::replace(&mut marks[v as usize], r) != r)
 }
 
-/// Whether the loop turns left about `normal` at every vertex, or bends right by
-/// no more than `eps` (the vertex's distance inside the chord of its neighbours).
+/// Whether the loop is convex within `eps` about `normal`: seen along the
+/// normal, it visits the corners of its own convex hull in order, counter-
+/// clockwise, and every other vertex lies within `eps` of the hull edge it
+/// falls between. (A test of each turn alone would let small dents add up.)
 fn is_convex(ring: &[u32], pos: &[DVec3], normal: DVec3, eps: f64) -> bool {
-    let n = ring.len();
-    n >= 3
-        && (0..n).all(|i| {
-            let [p, v, q] = [ring[(i + n - 1) % n], ring[i], ring[(i + 1) % n]].map(|k| pos[k as usize]);
-            let chord = (q - p).length();
-            chord > 0.0 && (v - p).cross(q - v).dot(normal) >= -eps * chord
-        })
+    let (u, v) = normal.any_orthonormal_pair();
+    let flat = |k: usize| {
+        let p = pos[ring[k] as usize];
+        DVec2::new(p.dot(u), p.dot(v))
+    };
+    let mut corners = convex_chain((0..ring.len()).map(|k| (flat(k), k as u32)).collect());
+    let n = corners.len();
+    let first = (0..n).min_by_key(|&k| corners[k]).unwrap_or(0);
+    corners.rotate_left(first);
+    if n < 3 || corners.windows(2).any(|w| w[0] >= w[1]) {
+        return false;
+    }
+    // Ring positions from each corner to the next, cyclically.
+    let m = ring.len();
+    (0..n).all(|i| {
+        let (a, b) = (corners[i] as usize, corners[(i + 1) % n] as usize);
+        let (pa, pb) = (flat(a), flat(b));
+        let end = if b > a { b } else { b + m };
+        (a + 1..end).all(|k| (pb - pa).perp_dot(flat(k % m) - pa) <= eps * pa.distance(pb))
+    })
 }
 
 /// Takes out of the faces every vertex that lies on exactly two faces and within
 /// `eps` of the straight edge that replaces its chain; both faces lose it, so the
 /// faces stay consistent. A face that would keep fewer than 3 vertices keeps all.
-fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) {
+/// Returns which vertices stay on only two faces: the bends.
+fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) -> Vec<bool> {
     let mut count = vec![0u32; pos.len()];
     for &v in &faces.loops {
         count[v as usize] += 1;
     }
     let mut removed = vec![false; pos.len()];
     let mut decided = vec![false; pos.len()];
-    let mut chain = Vec::new();
+    let (mut chain, mut keep) = (Vec::new(), Vec::new());
     for f in 0..faces.len() {
         let face = faces.face(f);
         let n = face.len();
@@ -235,47 +358,54 @@ fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) {
             chain.push(v);
             if count[v as usize] >= 3 {
                 if chain.len() > 2 && !decided[chain[1] as usize] {
-                    simplify(&chain, pos, eps, &mut removed);
-                    chain.iter().for_each(|&c| decided[c as usize] = true);
+                    let points: Vec<DVec3> = chain.iter().map(|&c| pos[c as usize]).collect();
+                    keep.clear();
+                    keep.resize(chain.len(), true);
+                    douglas_peucker(&points, eps, &mut keep);
+                    for (&c, &k) in chain.iter().zip(&keep) {
+                        (removed[c as usize], decided[c as usize]) = (!k, true);
+                    }
                 }
                 chain.clear();
                 chain.push(v);
             }
         }
     }
-    // Keep every face a polygon: restore the vertices of one left too small, until none is.
-    while let Some(f) =
-        (0..faces.len()).find(|&f| faces.face(f).iter().filter(|&&v| !removed[v as usize]).count() < 3)
-    {
-        faces.face(f).iter().for_each(|&v| removed[v as usize] = false);
+    // Keep every face a polygon: restore the vertices of those left too small
+    // (restoring only adds vertices to the others, so one pass does).
+    let small: Vec<usize> = (0..faces.len())
+        .filter(|&f| {
+            faces
+                .face(f)
+                .iter()
+                .filter(|&&v| !removed[v as usize])
+                .count()
+                < 3
+        })
+        .collect();
+    for f in small {
+        faces
+            .face(f)
+            .iter()
+            .for_each(|&v| removed[v as usize] = false);
     }
-    let mut kept = Polygons { loops: Vec::with_capacity(faces.loops.len()), starts: vec![0] };
+    let mut kept = Polygons {
+        loops: Vec::with_capacity(faces.loops.len()),
+        starts: vec![0],
+        planes: Vec::new(),
+    };
     for f in 0..faces.len() {
-        kept.push(faces.face(f).iter().copied().filter(|&v| !removed[v as usize]));
+        kept.push(
+            faces
+                .face(f)
+                .iter()
+                .copied()
+                .filter(|&v| !removed[v as usize]),
+            faces.planes[f],
+        );
     }
     *faces = kept;
-}
-
-/// Douglas-Peucker on a chain whose two ends stay: an inner vertex goes if it is
-/// within `eps` of the segment's line that spans it, else it stays and splits.
-fn simplify(chain: &[u32], pos: &[DVec3], eps: f64, removed: &mut [bool]) {
-    let mut spans = vec![(0, chain.len() - 1)];
-    while let Some((lo, hi)) = spans.pop() {
-        if hi - lo < 2 {
-            continue;
-        }
-        let (a, b) = (pos[chain[lo] as usize], pos[chain[hi] as usize]);
-        let line = (b - a).normalize_or_zero();
-        let dist = |k: usize| {
-            let d = pos[chain[k] as usize] - a;
-            (d - line * d.dot(line)).length()
-        };
-        let (far, far_dist) = (lo + 1..hi).map(|k| (k, dist(k))).fold((lo, -1.0), |m, x| if x.1 > m.1 { x } else { m });
-        if far_dist <= eps {
-            chain[lo + 1..hi].iter().for_each(|&v| removed[v as usize] = true);
-        } else {
-            spans.push((lo, far));
-            spans.push((far, hi));
-        }
-    }
+    (0..pos.len())
+        .map(|v| count[v] == 2 && !removed[v])
+        .collect()
 }

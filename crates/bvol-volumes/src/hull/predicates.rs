@@ -40,6 +40,30 @@ pub(super) fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     -exact_det(a, b, c, d)
 }
 
+/// `(b - a) x (c - a)`, each component rounded from its exact value (the
+/// differences and products kept exactly, as expansions). Its direction is right
+/// to a few ulps however thin the triangle, where the plainly rounded cross
+/// product of a sliver tilts by about the rounding times its length over its
+/// height, and points far along it would then seem in front of its plane.
+pub(super) fn cross_exact(a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
+    let (u, v) = (diff(b, a), diff(c, a));
+    // u[i] v[j] - u[j] v[i], summed exactly.
+    let component = |i: usize, j: usize| {
+        let mut sum = Expansion::default();
+        for (s, (p, q)) in [(1.0, (u[i], v[j])), (-1.0, (u[j], v[i]))] {
+            for x in p {
+                for y in q {
+                    let (product, error) = two_product(s * x, y);
+                    sum.add(error);
+                    sum.add(product);
+                }
+            }
+        }
+        sum.estimate()
+    };
+    DVec3::new(component(1, 2), component(2, 0), component(0, 1))
+}
+
 /// `det[a - d, b - d, c - d]` rounded from its exact value, which is kept as a
 /// non-overlapping expansion; only its sign (that of its largest part) is exact.
 fn exact_det(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
@@ -88,7 +112,10 @@ struct Expansion {
 
 impl Default for Expansion {
     fn default() -> Self {
-        Expansion { parts: [0.0; MAX_TERMS], len: 0 }
+        Expansion {
+            parts: [0.0; MAX_TERMS],
+            len: 0,
+        }
     }
 }
 
@@ -114,7 +141,16 @@ impl Expansion {
 
     /// The largest part: it carries the sign of the whole sum (0 for an empty sum).
     fn most_significant(&self) -> f64 {
-        if self.len == 0 { 0.0 } else { self.parts[self.len - 1] }
+        if self.len == 0 {
+            0.0
+        } else {
+            self.parts[self.len - 1]
+        }
+    }
+
+    /// The sum, rounded: the parts added smallest first (Shewchuk's `estimate`).
+    fn estimate(&self) -> f64 {
+        self.parts[..self.len].iter().sum()
     }
 }
 
@@ -155,6 +191,8 @@ fn two_product(a: f64, b: f64) -> (f64, f64) {
 
 #[cfg(test)]
 mod tests {
+    use glam::Vec3;
+
     use super::*;
 
     #[test]
@@ -170,7 +208,7 @@ mod tests {
         // Points on the plane x + y + z = 1, far from the origin along it, where
         // the filtered determinant is all roundoff; then nudged off by one ulp.
         let big = 1.0e7_f32;
-        let on = |x: f32, y: f32| DVec3::new(x as f64, y as f64, (1.0 - x as f64 - y as f64));
+        let on = |x: f32, y: f32| DVec3::new(x as f64, y as f64, 1.0 - x as f64 - y as f64);
         let (a, b, c) = (on(big, 0.5), on(0.25, big), on(-big, -big));
         let d = on(3.0, 5.0);
         assert_eq!(orient3d(a, b, c, d), 0.0);
@@ -181,6 +219,29 @@ mod tests {
         assert!(n.z > 0.0);
         assert!(orient3d(a, b, c, up) > 0.0);
         assert!(orient3d(a, b, c, down) < 0.0);
+    }
+
+    #[test]
+    fn cross_product_of_a_sliver_is_right_to_the_ulp() {
+        // f32 corners: a tiny, b large, c = b / 2, so a, b, c lie almost on a
+        // line. The differences take 40 bits, their products more than 53, and
+        // the plain cross product is mostly roundoff. The exact one is
+        // (b - a) x (b / 2 - a) = (a x b) / 2, whose products of f32 are exact in
+        // f64: right to the ulp.
+        let f = |bits: [u32; 3]| Vec3::from_array(bits.map(f32::from_bits)).as_dvec3();
+        let a = f([0x3530_8bd3, 0x3566_00f8, 0x351e_bc4c]);
+        let b = f([0x492b_96f9, 0x495f_6326, 0x491a_8151]);
+        let c = b * 0.5;
+        let want = a.cross(b) * 0.5;
+        let got = cross_exact(a, b, c);
+        for (g, w) in got.to_array().into_iter().zip(want.to_array()) {
+            assert!(
+                (g - w).abs() <= 2.0 * f64::EPSILON * w.abs(),
+                "{got} vs {want}"
+            );
+        }
+        let plain = (b - a).cross(c - a);
+        assert!((plain - want).length() > 1e3 * f64::EPSILON * want.length());
     }
 
     #[test]

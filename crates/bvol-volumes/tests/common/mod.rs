@@ -19,7 +19,12 @@ pub fn mesh(name: &str) -> Vec<Vec3> {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     models
         .iter()
-        .flat_map(|m| m.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])))
+        .flat_map(|m| {
+            m.mesh
+                .positions
+                .chunks_exact(3)
+                .map(|c| Vec3::new(c[0], c[1], c[2]))
+        })
         .collect()
 }
 
@@ -63,8 +68,13 @@ pub fn random_rotation(rng: &mut impl rand::Rng) -> glam::Quat {
     let (u1, u2, u3): (f32, f32, f32) = (rng.random(), rng.random(), rng.random());
     let tau = std::f32::consts::TAU;
     let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-    glam::Quat::from_xyzw(a * (tau * u2).sin(), a * (tau * u2).cos(), b * (tau * u3).sin(), b * (tau * u3).cos())
-        .normalize()
+    glam::Quat::from_xyzw(
+        a * (tau * u2).sin(),
+        a * (tau * u2).cos(),
+        b * (tau * u3).sin(),
+        b * (tau * u3).cos(),
+    )
+    .normalize()
 }
 
 /// A uniformly random unit vector.

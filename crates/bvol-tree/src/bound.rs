@@ -1,0 +1,161 @@
+//! The node bound of a tree: what the tree needs of a bounding volume.
+
+use std::fmt::Debug;
+
+use bvol_volumes::{Aabb, Ray, Sphere};
+use glam::{Vec3, Vec3A};
+
+use crate::error::BoundError;
+
+/// A bounding volume a [`Tree`](crate::Tree) can be built of.
+///
+/// Internal nodes hold the [`merge`](Bound::merge) of their children, so the
+/// merge must contain both inputs exactly (after f32 rounding), and
+/// [`contains`](Bound::contains) must agree with it: `a.merge(b).contains(a)`
+/// always holds. [`overlaps`](Bound::overlaps) is closed: touching counts.
+///
+/// Implemented for [`Aabb`] (the fast choice) and [`Sphere`] (internal nodes
+/// are exact minimal sphere merges; slower, kept to compare the two).
+pub trait Bound: Copy + Default + PartialEq + Debug + Send + Sync + 'static {
+    /// The smallest bound of this kind holding both.
+    fn merge(&self, other: &Self) -> Self;
+    /// Whether the two overlap or touch.
+    fn overlaps(&self, other: &Self) -> bool;
+    /// Whether `other` lies inside or on this bound.
+    fn contains(&self, other: &Self) -> bool;
+    /// The surface area: the cost measure of the surface area heuristic
+    /// (Goldsmith & Salmon 1987; MacDonald & Booth 1990). In f64 so that huge
+    /// (finite) bounds give finite costs and cost sums never overflow.
+    fn cost(&self) -> f64;
+    /// The bound grown by `margin >= 0` on every side; itself if growing it
+    /// would overflow to infinity.
+    fn fattened(&self, margin: f32) -> Self;
+    /// Why the bound cannot go in a tree: non-finite, inverted or negative.
+    fn check(&self) -> Result<(), BoundError>;
+    /// The centre, used to order and bin leaves when building.
+    fn center(&self) -> Vec3;
+    /// A characteristic size (largest half extent, or the radius), used to
+    /// scale fat margins to the body.
+    fn size(&self) -> f32;
+    /// The axis-aligned box around it, used for binned SAH builds: boxes are
+    /// merged in bins far faster than spheres, and rank splits as well.
+    fn aabb(&self) -> Aabb;
+    /// Where a ray enters the bound (`Some(0.0)` when it starts inside), or
+    /// `None` when it misses or would enter beyond `max_t`.
+    fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32>;
+}
+
+impl Bound for Aabb {
+    #[inline]
+    fn merge(&self, other: &Self) -> Self {
+        Aabb::merge(self, other)
+    }
+
+    /// Two SIMD comparisons and one mask test: branch-free, since a tree
+    /// traversal mispredicts short-circuit branches about half the time.
+    #[inline]
+    fn overlaps(&self, other: &Self) -> bool {
+        let lo = Vec3A::from(self.min).cmple(Vec3A::from(other.max));
+        let hi = Vec3A::from(other.min).cmple(Vec3A::from(self.max));
+        (lo & hi).all()
+    }
+
+    #[inline]
+    fn contains(&self, other: &Self) -> bool {
+        Aabb::contains(self, other)
+    }
+
+    #[inline]
+    fn cost(&self) -> f64 {
+        let e = self.max.as_dvec3() - self.min.as_dvec3();
+        2.0 * (e.x * e.y + e.y * e.z + e.z * e.x)
+    }
+
+    fn fattened(&self, margin: f32) -> Self {
+        let m = Vec3::splat(margin);
+        let fat = Aabb::new(self.min - m, self.max + m);
+        if fat.min.is_finite() && fat.max.is_finite() { fat } else { *self }
+    }
+
+    fn check(&self) -> Result<(), BoundError> {
+        if !(self.min.is_finite() && self.max.is_finite()) {
+            return Err(BoundError::NonFinite);
+        }
+        match (0..3).find(|&axis| self.min[axis] > self.max[axis]) {
+            Some(axis) => Err(BoundError::Inverted { axis, min: self.min[axis], max: self.max[axis] }),
+            None => Ok(()),
+        }
+    }
+
+    #[inline]
+    fn center(&self) -> Vec3 {
+        Aabb::center(self)
+    }
+
+    fn size(&self) -> f32 {
+        self.half_extents().max_element()
+    }
+
+    #[inline]
+    fn aabb(&self) -> Aabb {
+        *self
+    }
+
+    fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
+        Aabb::ray_entry(self, ray, max_t)
+    }
+}
+
+impl Bound for Sphere {
+    /// The exact minimal merge (the larger one when it holds the other).
+    fn merge(&self, other: &Self) -> Self {
+        Sphere::merge(self, other)
+    }
+
+    fn overlaps(&self, other: &Self) -> bool {
+        Sphere::overlaps(self, other)
+    }
+
+    /// In f64, by the same expression [`Sphere::merge`] bounds its result with,
+    /// so a merge always contains its inputs by this test.
+    fn contains(&self, other: &Self) -> bool {
+        let d = (other.center.as_dvec3() - self.center.as_dvec3()).length();
+        d + other.radius as f64 <= self.radius as f64
+    }
+
+    fn cost(&self) -> f64 {
+        let r = self.radius as f64;
+        4.0 * std::f64::consts::PI * r * r
+    }
+
+    fn fattened(&self, margin: f32) -> Self {
+        let radius = self.radius + margin;
+        if radius.is_finite() { Sphere::new(self.center, radius) } else { *self }
+    }
+
+    fn check(&self) -> Result<(), BoundError> {
+        if !(self.center.is_finite() && self.radius.is_finite()) {
+            return Err(BoundError::NonFinite);
+        }
+        if self.radius < 0.0 {
+            return Err(BoundError::NegativeRadius { radius: self.radius });
+        }
+        Ok(())
+    }
+
+    fn center(&self) -> Vec3 {
+        self.center
+    }
+
+    fn size(&self) -> f32 {
+        self.radius
+    }
+
+    fn aabb(&self) -> Aabb {
+        Sphere::aabb(self)
+    }
+
+    fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
+        Sphere::ray_entry(self, ray, max_t)
+    }
+}

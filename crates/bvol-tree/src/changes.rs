@@ -1,0 +1,70 @@
+//! The change log: which ids were inserted, moved or removed since the last
+//! time a [`PairSet`](crate::PairSet) caught up, so it retests only those.
+
+/// Ids changed since the log was last cleared: a list for iterating and a
+/// bit per id for membership, or "all of them" after a whole-tree update.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct Changes {
+    all: bool,
+    ids: Vec<u32>,
+    bits: Vec<u64>,
+}
+
+impl Changes {
+    /// Makes room for ids below `n`.
+    pub(crate) fn grow(&mut self, n: usize) {
+        let words = n.div_ceil(64);
+        if self.bits.len() < words {
+            self.bits.resize(words, 0);
+        }
+    }
+
+    /// Records that `id` changed (once).
+    #[inline]
+    pub(crate) fn mark(&mut self, id: u32) {
+        if self.all {
+            return;
+        }
+        let (word, bit) = (id as usize / 64, 1u64 << (id % 64));
+        if self.bits[word] & bit == 0 {
+            self.bits[word] |= bit;
+            self.ids.push(id);
+        }
+    }
+
+    /// Records that every id may have changed.
+    pub(crate) fn mark_all(&mut self) {
+        self.clear();
+        self.all = true;
+    }
+
+    /// Whether `id` changed.
+    #[inline]
+    pub(crate) fn is_marked(&self, id: u32) -> bool {
+        self.all || self.bits.get(id as usize / 64).is_some_and(|w| w & (1 << (id % 64)) != 0)
+    }
+
+    /// Whether everything is marked.
+    pub(crate) fn all(&self) -> bool {
+        self.all
+    }
+
+    /// The ids marked one by one (empty when [`Changes::all`]).
+    pub(crate) fn ids(&self) -> &[u32] {
+        &self.ids
+    }
+
+    /// Forgets every change.
+    pub(crate) fn clear(&mut self) {
+        for &id in &self.ids {
+            self.bits[id as usize / 64] &= !(1 << (id % 64));
+        }
+        self.ids.clear();
+        self.all = false;
+    }
+
+    /// Bytes held.
+    pub(crate) fn memory_bytes(&self) -> usize {
+        self.ids.capacity() * 4 + self.bits.capacity() * 8
+    }
+}

@@ -1,0 +1,134 @@
+//! Whole-tree builds in near-linear time: leaves sorted along a Morton
+//! (Z-order) curve by radix sort, cut at Morton bit boundaries into clusters
+//! of at most 16, and the clusters joined by binned SAH: HLBVH (Pantaleoni &
+//! Luebke 2010; Garanzha, Pantaleoni & McAllister 2011). Every split is still
+//! chosen by SAH (over clusters at the top, over a cluster's few leaves at
+//! the bottom), but no level bins all n leaves: the sort replaces the
+//! O(n log n) top-down partitioning of a full binned-SAH build.
+
+use glam::Vec3;
+
+use crate::Bound;
+use crate::build::{Atom, Expand, NoClusters, build};
+use crate::node::{Node, Ref};
+
+/// Clusters hold at most this many leaves.
+const CLUSTER: usize = 16;
+/// Bits per axis of a Morton code (30 bits in all).
+const BITS: u32 = 10;
+
+/// Builds a tree over `leaves` (at least 2, weight 1 each) into `out`, which
+/// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root. Returns
+/// the root's bound. `leaves` is left in Morton order.
+pub(crate) fn build_morton<B: Bound>(leaves: &mut Vec<Atom<B>>, out: &mut [Node<B>]) -> B {
+    let codes = sort(leaves);
+    let mut clusters = Vec::with_capacity(leaves.len() / (CLUSTER / 2) + 1);
+    cut(&codes, 0, leaves.len(), &mut clusters);
+    let mut atoms: Vec<Atom<B>> = clusters
+        .iter()
+        .map(|&(start, end)| {
+            let bound = leaves[start + 1..end].iter().fold(leaves[start].bound, |b, a| b.merge(&a.bound));
+            Atom { r: Ref(start as u32), bound, center: bound.center(), weight: (end - start) as u32 }
+        })
+        .collect();
+    let sorted = Sorted { leaves };
+    build(&mut atoms, out, 0, &sorted).1
+}
+
+/// Leaves in Morton order: expands a cluster atom (named by its first leaf's
+/// position) into a binned-SAH subtree of its few leaves.
+struct Sorted<'a, B: Bound> {
+    leaves: &'a [Atom<B>],
+}
+
+impl<B: Bound> Expand<B> for Sorted<'_, B> {
+    fn expand(&self, atom: &Atom<B>, out: &mut [Node<B>], base: u32) -> (Ref, B) {
+        let start = atom.r.0 as usize;
+        let cluster = &self.leaves[start..start + atom.weight as usize];
+        let mut local = [cluster[0]; CLUSTER];
+        local[..cluster.len()].copy_from_slice(cluster);
+        build(&mut local[..cluster.len()], out, base, &NoClusters)
+    }
+}
+
+/// Where to split the sorted range `start..end` (at least 2 long), relative
+/// to `start`: at the first code with the highest differing bit set, or in the
+/// middle when all codes are equal.
+fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
+    let (first, last) = (codes[start], codes[end - 1]);
+    if first == last {
+        return (end - start) / 2;
+    }
+    let bit = 31 - (first ^ last).leading_zeros();
+    codes[start..end].partition_point(|c| c & (1 << bit) == 0)
+}
+
+/// Cuts the sorted range `start..end` at Morton bit boundaries until every
+/// piece has at most [`CLUSTER`] leaves, appending the pieces in order.
+fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(usize, usize)>) {
+    if end - start <= CLUSTER {
+        clusters.push((start, end));
+        return;
+    }
+    let mid = start + morton_split(codes, start, end);
+    cut(codes, start, mid, clusters);
+    cut(codes, mid, end, clusters);
+}
+
+/// Sorts `leaves` by the Morton code of their centres (in the box of the
+/// centres, 10 bits per axis) with a stable LSD radix sort, and returns the
+/// sorted codes.
+fn sort<B: Bound>(leaves: &mut Vec<Atom<B>>) -> Vec<u32> {
+    let (lo, hi) = leaves
+        .iter()
+        .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), a| (lo.min(a.center), hi.max(a.center)));
+    let cells = ((1 << BITS) - 1) as f32;
+    let extent = hi - lo;
+    // A flat axis gets scale 0 (all its coordinates quantise to 0).
+    let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), Vec3::splat(cells) / extent, Vec3::ZERO);
+    let mut keyed: Vec<(u32, u32)> = leaves
+        .iter()
+        .enumerate()
+        .map(|(i, a)| {
+            let q = ((a.center - lo) * scale).clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
+            (spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2, i as u32)
+        })
+        .collect();
+    radix_sort(&mut keyed);
+    let sorted: Vec<Atom<B>> = keyed.iter().map(|&(_, i)| leaves[i as usize]).collect();
+    *leaves = sorted;
+    keyed.into_iter().map(|(c, _)| c).collect()
+}
+
+/// Spreads the low 10 bits of `v` to every third bit (bit i to bit 3i).
+fn spread(v: u32) -> u32 {
+    let mut x = v & 0x3ff;
+    x = (x | x << 16) & 0x0300_00FF;
+    x = (x | x << 8) & 0x0300_F00F;
+    x = (x | x << 4) & 0x030C_30C3;
+    (x | x << 2) & 0x0924_9249
+}
+
+/// Stable LSD radix sort of (key, value) by the 30-bit key: three passes of
+/// 10 bits, O(n).
+fn radix_sort(items: &mut Vec<(u32, u32)>) {
+    let mut scratch = vec![(0, 0); items.len()];
+    for pass in 0..3 {
+        let shift = pass * BITS;
+        let digit = |k: u32| ((k >> shift) & ((1 << BITS) - 1)) as usize;
+        let mut offsets = vec![0usize; 1 << BITS];
+        for &(k, _) in items.iter() {
+            offsets[digit(k)] += 1;
+        }
+        let mut sum = 0;
+        for o in offsets.iter_mut() {
+            (*o, sum) = (sum, sum + *o);
+        }
+        for &item in items.iter() {
+            let d = digit(item.0);
+            scratch[offsets[d]] = item;
+            offsets[d] += 1;
+        }
+        std::mem::swap(items, &mut scratch);
+    }
+}

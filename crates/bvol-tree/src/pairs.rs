@@ -1,0 +1,253 @@
+//! Every overlapping pair of leaves: within one tree (each internal node's
+//! two subtrees against each other), or between two trees (dynamic against
+//! static: the static tree's leaves are never tested against each other).
+//!
+//! The search is a simultaneous descent over pairs of internal nodes, with a
+//! mask of which children take part, so that a leaf met against a subtree
+//! stays represented by its parent node and every step has the same shape:
+//! load two nodes, four overlap tests, branch-free pushes.
+//!
+//! The work is cut into a fixed list of independent tasks, fixed by the trees
+//! alone, which rayon runs in parallel; their outputs are concatenated in task
+//! order, so the result is the same `Vec`, in the same order, on any number
+//! of threads.
+
+use rayon::prelude::*;
+
+
+use crate::node::{Node, Ref};
+use crate::{Bound, Tree};
+
+/// Internal nodes per task of a one-tree search: small enough for work
+/// stealing to balance 16+ threads, large enough that per-task overhead is
+/// below 1% of the descent.
+const CHUNK: usize = 256;
+/// A two-tree search is expanded until it has this many pending visits.
+const TASKS: usize = 512;
+
+/// A pair of internal nodes to visit, `x` in the first tree and `y` in the
+/// second: the children of `x` selected by bits 0-1 of `mask` against the
+/// children of `y` selected by bits 2-3.
+#[derive(Clone, Copy, Debug, Default)]
+struct Visit {
+    x: u32,
+    y: u32,
+    mask: u8,
+}
+
+/// Both children of both nodes.
+const ALL: u8 = 0b1111;
+/// Child 0 of `x` against child 1 of `y`: with `x == y`, the two subtrees of
+/// one node.
+const SIBLINGS: u8 = 0b1001;
+
+/// A pair search over one tree (`a` and `b` the same nodes, pairs reported
+/// `(min, max)` and each once) or two (`(id in a, id in b)`).
+struct Search<'t, B: Bound> {
+    a: &'t [Node<B>],
+    b: &'t [Node<B>],
+    same: bool,
+}
+
+impl<B: Bound> Tree<B> {
+    /// Every pair of leaves whose tight bounds overlap or touch, each once as
+    /// `(a, b)` with `a < b`. The order is fixed by the tree: the same on any
+    /// number of threads (run inside a rayon pool to choose it).
+    pub fn pairs(&self) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        self.pairs_into(&mut out);
+        out
+    }
+
+    /// [`Tree::pairs`] into `out` (cleared first), reusing its allocation.
+    pub fn pairs_into(&self, out: &mut Vec<(u32, u32)>) {
+        out.clear();
+        let search = Search { a: &self.nodes, b: &self.nodes, same: true };
+        let chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).collect();
+        let parts: Vec<Vec<(u32, u32)>> = chunks
+            .par_iter()
+            .map_init(Walker::default, |walker, &start| {
+                let end = (start + CHUNK).min(self.nodes.len());
+                // Free nodes have no second child.
+                let used = (start..end).filter(|&x| self.nodes[x].child[1] != Ref::NONE);
+                walker.run(&search, used.map(|x| Visit { x: x as u32, y: x as u32, mask: SIBLINGS }));
+                walker.take()
+            })
+            .collect();
+        concat(parts, out);
+    }
+
+    /// Every pair `(id in self, id in other)` of leaves whose tight bounds
+    /// overlap or touch, each once; leaves of the same tree are never tested
+    /// against each other. Deterministic order, as [`Tree::pairs`].
+    pub fn pairs_with(&self, other: &Tree<B>) -> Vec<(u32, u32)> {
+        let mut out = Vec::new();
+        if self.root == Ref::NONE
+            || other.root == Ref::NONE
+            || !self.root_bound.overlaps(&other.root_bound)
+        {
+            return out;
+        }
+        match (self.root.is_node(), other.root.is_node()) {
+            (true, true) => {}
+            // A one-leaf tree: a single query of its bound.
+            (_, false) => {
+                let b = other.root.index();
+                self.query(&other.root_bound, |a| out.push((a, b)));
+                return out;
+            }
+            (false, true) => {
+                let a = self.root.index();
+                other.query(&self.root_bound, |b| out.push((a, b)));
+                return out;
+            }
+        }
+        let search = Search { a: &self.nodes, b: &other.nodes, same: false };
+        let mut walker = Walker::default();
+        let first = Visit { x: self.root.index(), y: other.root.index(), mask: ALL };
+        let visits = walker.expand(&search, first, TASKS);
+        let head = walker.take();
+        let parts: Vec<Vec<(u32, u32)>> = visits
+            .par_chunks(TASKS / 64)
+            .map_init(Walker::default, |walker, visits| {
+                walker.run(&search, visits.iter().copied());
+                walker.take()
+            })
+            .collect();
+        out.extend_from_slice(&head);
+        concat(parts, &mut out);
+        out
+    }
+}
+
+/// Appends the parts to `out` in order.
+fn concat(parts: Vec<Vec<(u32, u32)>>, out: &mut Vec<(u32, u32)>) {
+    out.reserve(parts.iter().map(Vec::len).sum());
+    for part in parts {
+        out.extend_from_slice(&part);
+    }
+}
+
+impl<B: Bound> Search<'_, B> {
+    /// The output form of a pair: `(min, max)` within one tree, else as is.
+    #[inline]
+    fn pair(&self, a: u32, b: u32) -> (u32, u32) {
+        if self.same && b < a { (b, a) } else { (a, b) }
+    }
+}
+
+/// A stack (or output buffer) whose pushes are branch-free: the value is
+/// written unconditionally and the length advanced by the condition, so the
+/// unpredictable overlap results of a traversal cost no mispredictions.
+struct Buf<T> {
+    items: Vec<T>,
+    len: usize,
+}
+
+impl<T: Copy + Default> Buf<T> {
+    /// Makes room for `k` more pushes.
+    #[inline]
+    fn reserve(&mut self, k: usize) {
+        if self.len + k > self.items.len() {
+            let n = (self.items.len() * 2).max(self.len + k).max(64);
+            self.items.resize(n, T::default());
+        }
+    }
+
+    /// Pushes `item` when `keep` holds; room must have been reserved.
+    #[inline(always)]
+    fn push_if(&mut self, item: T, keep: bool) {
+        self.items[self.len] = item;
+        self.len += usize::from(keep);
+    }
+}
+
+impl<T> Default for Buf<T> {
+    fn default() -> Self {
+        Buf { items: Vec::new(), len: 0 }
+    }
+}
+
+/// The frontiers and output of one thread's descents.
+#[derive(Default)]
+struct Walker {
+    /// The visits of the current level.
+    now: Buf<Visit>,
+    /// The visits of the next level.
+    next: Buf<Visit>,
+    out: Buf<(u32, u32)>,
+}
+
+impl Walker {
+    /// Every pair under the given visits, appended to the output. The descent
+    /// is breadth-first: the visits of one level do not depend on each other,
+    /// so the processor overlaps their node loads and overlap tests, where a
+    /// depth-first stack chains every step on the one before.
+    fn run<B: Bound>(&mut self, s: &Search<B>, visits: impl Iterator<Item = Visit>) {
+        self.now.len = 0;
+        for v in visits {
+            self.now.reserve(1);
+            self.now.push_if(v, true);
+        }
+        while self.now.len > 0 {
+            self.level(s);
+            std::mem::swap(&mut self.now, &mut self.next);
+        }
+    }
+
+    /// Visits the current level, filling the next.
+    fn level<B: Bound>(&mut self, s: &Search<B>) {
+        let n = self.now.len;
+        self.next.len = 0;
+        self.next.reserve(4 * n);
+        self.out.reserve(4 * n);
+        for k in 0..n {
+            let v = self.now.items[k];
+            self.step(s, v);
+        }
+
+    }
+
+    /// Runs levels from `first` until `n` visits are pending (or none is),
+    /// and returns those; pairs found on the way are in the output.
+    fn expand<B: Bound>(&mut self, s: &Search<B>, first: Visit, n: usize) -> Vec<Visit> {
+        self.now.len = 0;
+        self.now.reserve(1);
+        self.now.push_if(first, true);
+        while self.now.len > 0 && self.now.len < n {
+            self.level(s);
+            std::mem::swap(&mut self.now, &mut self.next);
+        }
+        let pending = self.now.items[..self.now.len].to_vec();
+        self.now.len = 0;
+        pending
+    }
+
+    /// One visit: the selected children of `x` against those of `y`. Two
+    /// overlapping leaves are reported; a leaf against a subtree is pushed as
+    /// its parent with only its side selected; two subtrees as a new pair.
+    #[inline(always)]
+    fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
+        let (na, nb) = (&s.a[v.x as usize], &s.b[v.y as usize]);
+        for i in 0..2 {
+            let ci = na.child[i];
+            let (x, mx) = if ci.is_node() { (ci.index(), 0b11) } else { (v.x, 1 << i) };
+            for j in 0..2 {
+                let cj = nb.child[j];
+                let (y, my) = if cj.is_node() { (cj.index(), 0b11) } else { (v.y, 1 << j) };
+                let selected = (v.mask >> i) & (v.mask >> (2 + j)) & 1 != 0;
+                let hit = selected & na.bounds[i].overlaps(&nb.bounds[j]);
+                let leaves = ci.is_leaf() & cj.is_leaf();
+                self.out.push_if(s.pair(ci.index(), cj.index()), hit & leaves);
+                self.next.push_if(Visit { x, y, mask: mx | my << 2 }, hit & !leaves);
+            }
+        }
+    }
+
+    /// The pairs found so far, leaving the output empty.
+    fn take(&mut self) -> Vec<(u32, u32)> {
+        let pairs = self.out.items[..self.out.len].to_vec();
+        self.out.len = 0;
+        pairs
+    }
+}

@@ -1,0 +1,139 @@
+//! Whole-tree construction: batch builds for level loads, and full rebuilds.
+
+use crate::build::Atom;
+use crate::morton::build_morton;
+use crate::error::TreeError;
+use crate::node::{Node, Ref};
+use crate::tree::{NONE, ROOT, check_bound, check_id};
+use crate::{Bound, Config, Tree};
+
+impl<B: Bound> Tree<B> {
+    /// A tree over `bounds`, leaf `i` holding `bounds[i]` (ids `0..len`),
+    /// built in one go with binned SAH: the way to load a level.
+    pub fn from_bounds(bounds: &[B]) -> Result<Self, TreeError> {
+        Self::build(Config::default(), bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)))
+    }
+
+    /// A tree over `(id, bound)` leaves, built in one go with binned SAH
+    /// (parallel with rayon; the same tree whatever the thread count).
+    pub fn build(
+        config: Config,
+        leaves: impl IntoIterator<Item = (u32, B)>,
+    ) -> Result<Self, TreeError> {
+        let mut tree = Self::with_config(config);
+        let mut atoms = Vec::new();
+        for (id, bound) in leaves {
+            check_id(id)?;
+            check_bound(id, &bound)?;
+            tree.grow_ids(id);
+            if tree.leaf_parents[id as usize] != NONE {
+                return Err(TreeError::DuplicateId { id });
+            }
+            tree.leaf_parents[id as usize] = ROOT; // claimed; set for real below
+            tree.changes.mark(id);
+            atoms.push(Atom::new(Ref::leaf(id), bound));
+        }
+        tree.len = atoms.len();
+        tree.install(&mut atoms);
+        Ok(tree)
+    }
+
+    /// Rebuilds the whole tree from its leaves' tight bounds with binned SAH.
+    /// O(n log n) in one call: for loads and tests. Per frame, use
+    /// [`Tree::update`] or [`Tree::optimize`], whose work is bounded.
+    pub fn rebuild(&mut self) {
+        let mut atoms = self.leaf_atoms();
+        self.install(&mut atoms);
+    }
+
+    /// Every leaf as an atom with its tight bound, in node order.
+    fn leaf_atoms(&self) -> Vec<Atom<B>> {
+        if self.root.is_leaf() {
+            return vec![Atom::new(self.root, self.root_bound)];
+        }
+        let mut atoms = Vec::with_capacity(self.len);
+        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
+            if parent == NONE {
+                continue; // free
+            }
+            for side in 0..2 {
+                if node.child[side].is_leaf() {
+                    atoms.push(Atom::new(node.child[side], node.bounds[side]));
+                }
+            }
+        }
+        atoms
+    }
+
+    /// Replaces every node by a fresh build over `atoms` (all of them leaves),
+    /// in preorder from node 0, with no free nodes.
+    pub(crate) fn install(&mut self, atoms: &mut Vec<Atom<B>>) {
+        self.free = Ref::NONE;
+        self.free_count = 0;
+        match atoms.as_slice() {
+            [] => {
+                self.clear_nodes(0);
+                self.root = Ref::NONE;
+            }
+            &[one] => {
+                self.clear_nodes(0);
+                self.root = one.r;
+                self.root_bound = one.bound;
+                self.set_parent(one.r, ROOT);
+            }
+            _ => {
+                self.clear_nodes(atoms.len() - 1);
+                self.root_bound = build_morton(atoms, &mut self.nodes);
+                self.root = Ref::node(0);
+                self.relink_all();
+            }
+        }
+        self.upkeep.after_rebuild(self.sah_cost());
+    }
+
+    /// Resizes the node arrays to `n` fresh nodes, releasing spare capacity.
+    fn clear_nodes(&mut self, n: usize) {
+        self.nodes.clear();
+        self.nodes.resize(n, Node::empty());
+        self.nodes.shrink_to(n);
+        self.parents.clear();
+        self.parents.resize(n, NONE);
+        self.parents.shrink_to(n);
+        self.enlarged.clear();
+        self.enlarged.resize(n, false);
+        self.enlarged.shrink_to(n);
+    }
+
+    /// Sets every parent link from the child references, for a tree rooted
+    /// at node 0 with no free nodes.
+    fn relink_all(&mut self) {
+        self.parents[0] = ROOT;
+        for x in 0..self.nodes.len() {
+            for side in 0..2 {
+                self.set_parent(self.nodes[x].child[side], x as u32);
+            }
+        }
+    }
+
+    /// The surface-area cost of the tree: the areas of the internal nodes'
+    /// bounds as stored (what a traversal tests) summed, over the root's: the
+    /// expected number of internal nodes a random ray visits (MacDonald &
+    /// Booth 1990). 0 for fewer than 2 leaves.
+    pub fn sah_cost(&self) -> f64 {
+        if !self.root.is_node() {
+            return 0.0;
+        }
+        let root_area = self.root_bound.cost();
+        if root_area <= 0.0 {
+            return 0.0;
+        }
+        let inner: f64 = self
+            .nodes
+            .iter()
+            .zip(&self.parents)
+            .filter(|(_, p)| **p != NONE)
+            .flat_map(|(n, _)| (0..2).filter(|&s| n.child[s].is_node()).map(|s| n.bounds[s].cost()))
+            .sum();
+        (root_area + inner) / root_area
+    }
+}

@@ -1,0 +1,251 @@
+//! The frame update: all of a frame's bounds in, the tree brought up to date
+//! by per-leaf moves or by one bottom-up refit, whichever the fraction of
+//! leaves that moved makes cheaper.
+
+use crate::node::{Node, Ref};
+use crate::tree::{NONE, ROOT, check_bound, check_id};
+use crate::{Bound, Tree, TreeError};
+
+/// What [`Tree::update`] did.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Frame {
+    /// Leaves whose bound changed.
+    pub moved: usize,
+    /// Ids that were new, and inserted.
+    pub inserted: usize,
+    /// Whether the whole tree was refit (else moved leaves were updated one
+    /// by one).
+    pub refit: bool,
+    /// Leaves reinserted because they landed clear of where they were.
+    pub reinserted: usize,
+    /// Atoms (leaves or kept subtrees) placed by the upkeep's rebuilds.
+    pub rebuilt: usize,
+}
+
+impl<B: Bound> Tree<B> {
+    /// Brings the tree up to date with one frame: `bounds[id]` is the bound of
+    /// leaf `id` (ids `0..bounds.len()`; ids not yet in the tree are inserted,
+    /// ids beyond the slice are left alone). The tree finds what moved itself.
+    ///
+    /// When fewer than [`Config::refit_fraction`](crate::Config) of the
+    /// leaves moved (predicted from the previous frame, confirmed by a scan),
+    /// each moved leaf is updated as by [`Tree::set_bound`] and then
+    /// [`Tree::optimize`] runs. Otherwise every internal node is refit
+    /// bottom-up in one pass to the exact merge of its children, leaves that
+    /// jumped clear of their old bound are reinserted, and the tree is rebuilt
+    /// (in O(n), see [`Tree::rebuild`]) when its SAH cost has drifted more
+    /// than [`Config::drift`](crate::Config) above its cost when built.
+    ///
+    /// Every bound is checked first: on error nothing has changed.
+    pub fn update(&mut self, bounds: &[B]) -> Result<Frame, TreeError> {
+        if let Some(last) = bounds.len().checked_sub(1) {
+            check_id(u32::try_from(last).unwrap_or(u32::MAX))?;
+        }
+        for (id, bound) in bounds.iter().enumerate() {
+            check_bound(id as u32, bound)?;
+        }
+        let mut frame = Frame::default();
+        if self.is_empty() {
+            *self = Self::build(self.config, bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)))?;
+            frame.inserted = bounds.len();
+            return Ok(frame);
+        }
+        let refit = self.upkeep.moved_fraction >= self.config.refit_fraction;
+        if refit {
+            self.refit_frame(bounds, &mut frame);
+        } else {
+            let moved = self.scan(bounds);
+            if moved.len() as f32 >= self.config.refit_fraction * self.len as f32 {
+                self.refit_frame(bounds, &mut frame);
+            } else {
+                self.move_each(bounds, &moved, &mut frame);
+            }
+        }
+        for id in 0..bounds.len() as u32 {
+            if !self.contains(id) {
+                self.insert(id, bounds[id as usize])?;
+                frame.inserted += 1;
+            }
+        }
+        self.upkeep.moved_fraction = frame.moved as f32 / self.len.max(1) as f32;
+        Ok(frame)
+    }
+
+    /// Refits every internal node bottom-up to the exact merge of its
+    /// children's bounds (tightening every fat margin), in one pass.
+    pub fn refit(&mut self) {
+        let mut scratch = Vec::new();
+        self.refit_pass(None, &mut scratch, &mut Vec::new());
+    }
+
+    /// The refit path of a frame.
+    fn refit_frame(&mut self, bounds: &[B], frame: &mut Frame) {
+        let mut moved = std::mem::take(&mut self.upkeep.moved);
+        let mut jumped = std::mem::take(&mut self.upkeep.jumped);
+        let cost = self.refit_pass(Some(bounds), &mut moved, &mut jumped);
+        frame.refit = true;
+        frame.moved = moved.len();
+        frame.reinserted = jumped.len();
+        for &id in &jumped {
+            // Clear of its old bound: stretching the ancestors across the gap
+            // would make every later pair search visit them.
+            let bound = self.remove_leaf(id);
+            self.insert_leaf(id, bound, &bound);
+        }
+        if moved.len() * 2 > self.len {
+            self.changes.mark_all();
+        } else {
+            moved.iter().for_each(|&id| self.changes.mark(id));
+        }
+        // Jumped leaves inflated the cost the refit measured: measure again.
+        let cost = if jumped.is_empty() { cost } else { self.sah_cost() };
+        if cost > self.upkeep.built_cost * (1.0 + self.config.drift) {
+            self.rebuild();
+            frame.rebuilt = self.len;
+        }
+        moved.clear();
+        jumped.clear();
+        (self.upkeep.moved, self.upkeep.jumped) = (moved, jumped);
+    }
+
+    /// The ids `< bounds.len()` whose bound differs from the tree's, in node
+    /// order.
+    fn scan(&self, bounds: &[B]) -> Vec<u32> {
+        let mut moved = Vec::new();
+        if self.root.is_leaf() {
+            let id = self.root.index();
+            if bounds.get(id as usize).is_some_and(|b| *b != self.root_bound) {
+                moved.push(id);
+            }
+            return moved;
+        }
+        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
+            if parent == NONE {
+                continue;
+            }
+            for side in 0..2 {
+                let c = node.child[side];
+                if c.is_leaf()
+                    && bounds.get(c.index() as usize).is_some_and(|b| *b != node.bounds[side])
+                {
+                    moved.push(c.index());
+                }
+            }
+        }
+        moved
+    }
+
+    /// The per-leaf path of a frame: each moved leaf updated on its own, then
+    /// the bounded upkeep.
+    fn move_each(&mut self, bounds: &[B], moved: &[u32], frame: &mut Frame) {
+        for &id in moved {
+            if self.move_leaf(id, bounds[id as usize]) == crate::Move::Reinserted {
+                frame.reinserted += 1;
+            }
+            self.changes.mark(id);
+        }
+        frame.moved = moved.len();
+        frame.rebuilt = self.optimize();
+    }
+
+    /// Sets leaf bounds from `bounds` (when given), recording in `moved` the
+    /// ids that changed and in `jumped` those whose new bound does not even
+    /// overlap the old one, and refits every internal node to the exact merge
+    /// of its children. Returns the SAH cost after the refit.
+    ///
+    /// Runs over the nodes in reverse preorder, children before parents, with
+    /// no stack: the nodes are first laid out in preorder if they are not.
+    pub(crate) fn refit_pass(
+        &mut self,
+        bounds: Option<&[B]>,
+        moved: &mut Vec<u32>,
+        jumped: &mut Vec<u32>,
+    ) -> f64 {
+        if self.root.is_leaf() {
+            let id = self.root.index();
+            if let Some(&b) = bounds.and_then(|all| all.get(id as usize))
+                && b != self.root_bound
+            {
+                moved.push(id);
+                self.root_bound = b;
+            }
+            return 0.0;
+        }
+        if !self.root.is_node() {
+            return 0.0;
+        }
+        if !self.upkeep.preorder {
+            self.relayout();
+        }
+        let mut inner = 0.0;
+        for x in (0..self.nodes.len()).rev() {
+            let (head, tail) = self.nodes.split_at_mut(x + 1);
+            let node = &mut head[x];
+            for side in 0..2 {
+                let c = node.child[side];
+                if c.is_node() {
+                    // Preorder: every child comes after its parent.
+                    let b = tail[c.index() as usize - x - 1].merged();
+                    inner += b.cost();
+                    node.bounds[side] = b;
+                } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
+                    let old = &mut node.bounds[side];
+                    if b != *old {
+                        moved.push(c.index());
+                        if !b.overlaps(old) {
+                            jumped.push(c.index());
+                        }
+                        *old = b;
+                    }
+                }
+            }
+        }
+        self.root_bound = self.nodes[0].merged();
+        self.enlarged.fill(false);
+        let root_area = self.root_bound.cost();
+        if root_area > 0.0 { 1.0 + inner / root_area } else { 0.0 }
+    }
+
+    /// Lays the nodes out in preorder from node 0 (children after parents,
+    /// each subtree contiguous), dropping free nodes.
+    pub(crate) fn relayout(&mut self) {
+        let used = self.nodes.len() - self.free_count;
+        let mut order = Vec::with_capacity(used);
+        let mut stack = vec![self.root.index()];
+        while let Some(x) = stack.pop() {
+            order.push(x);
+            let n = &self.nodes[x as usize];
+            for side in (0..2).rev() {
+                if n.child[side].is_node() {
+                    stack.push(n.child[side].index());
+                }
+            }
+        }
+        let mut new_index = vec![NONE; self.nodes.len()];
+        for (new, &old) in order.iter().enumerate() {
+            new_index[old as usize] = new as u32;
+        }
+        let remap = |r: Ref| if r.is_node() { Ref::node(new_index[r.index() as usize]) } else { r };
+        let nodes: Vec<Node<B>> = order
+            .iter()
+            .map(|&old| {
+                let n = self.nodes[old as usize];
+                Node { bounds: n.bounds, child: [remap(n.child[0]), remap(n.child[1])] }
+            })
+            .collect();
+        self.enlarged = order.iter().map(|&old| self.enlarged[old as usize]).collect();
+        self.nodes = nodes;
+        self.parents.clear();
+        self.parents.resize(used, NONE);
+        self.free = Ref::NONE;
+        self.free_count = 0;
+        self.root = Ref::node(0);
+        self.parents[0] = ROOT;
+        for x in 0..used {
+            for side in 0..2 {
+                self.set_parent(self.nodes[x].child[side], x as u32);
+            }
+        }
+        self.upkeep.preorder = true;
+    }
+}

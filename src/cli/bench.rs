@@ -1,0 +1,165 @@
+//! `bvol bench pairs`: update + all pairs per frame on a generated scene or a
+//! recorded box trace, printed in the line format of ../shared/SCENE_FORMAT.md.
+
+use std::fs::File;
+use std::io::BufWriter;
+use std::path::PathBuf;
+use std::time::Instant;
+
+use bvol::scenes::{Scene, SceneKind};
+use bvol::volumes::Aabb;
+use bvol::{BoxTrace, PairDigest, TraceWriter};
+use bvol_tree::Tree;
+use clap::Args;
+use indicatif::{ProgressBar, ProgressStyle};
+
+/// Where the frames come from.
+#[derive(Args, Debug)]
+pub struct PairsArgs {
+    /// A generated scene: uniform, clustered, mixed, pile or teleport.
+    #[arg(long, default_value = "uniform", conflicts_with = "load")]
+    scene: SceneKind,
+    /// Bodies in the generated scene.
+    #[arg(long, default_value_t = 100_000)]
+    n: usize,
+    /// Frames to run (the first builds the tree and is reported apart).
+    #[arg(long, default_value_t = 100)]
+    frames: usize,
+    /// Seed of the generated scene.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Threads for pair finding and builds (the output is the same for any).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+    /// Read the frames from a box-trace file instead of generating them.
+    #[arg(long)]
+    load: Option<PathBuf>,
+    /// Also write the generated frames to a box-trace file.
+    #[arg(long, conflicts_with = "load")]
+    dump: Option<PathBuf>,
+}
+
+/// A source of frames.
+enum Frames {
+    Scene(Scene),
+    Trace(BoxTrace),
+}
+
+impl Frames {
+    fn frame(&mut self, f: usize) -> &[Aabb] {
+        match self {
+            Frames::Scene(scene) => scene.step(),
+            Frames::Trace(trace) => trace.frame(f),
+        }
+    }
+}
+
+/// What one run measured.
+struct Run {
+    n: usize,
+    frames: usize,
+    pairs: u64,
+    build_ms: f64,
+    frame_ms: Vec<f64>,
+    digest: PairDigest,
+    bytes: usize,
+}
+
+pub fn run(args: PairsArgs) -> Result<(), String> {
+    if args.threads == 0 {
+        return Err("--threads must be at least 1".into());
+    }
+    let (frames, n, count) = match &args.load {
+        Some(path) => {
+            let trace = BoxTrace::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let (n, count) = (trace.n(), trace.frames());
+            (Frames::Trace(trace), n, count)
+        }
+        None => (Frames::Scene(Scene::new(args.scene, args.n, args.seed)), args.n, args.frames),
+    };
+    if count == 0 {
+        return Err("no frames to run".into());
+    }
+    let mut dump = match &args.dump {
+        Some(path) => {
+            let file = File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            Some(TraceWriter::new(BufWriter::new(file), n, count).map_err(|e| e.to_string())?)
+        }
+        None => None,
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let run = pool.install(|| measure(frames, n, count, &mut dump))?;
+    if let (Some(writer), Some(path)) = (dump, &args.dump) {
+        writer.finish().map_err(|e| format!("{}: {e}", path.display()))?;
+    }
+    print(&run, args.threads, args.load.as_ref().map_or(args.scene.name(), |_| "trace"));
+    Ok(())
+}
+
+fn measure(
+    mut frames: Frames,
+    n: usize,
+    count: usize,
+    dump: &mut Option<TraceWriter<BufWriter<File>>>,
+) -> Result<Run, String> {
+    let progress = ProgressBar::new(count as u64).with_style(
+        ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {eta} left").expect("template"),
+    );
+    let mut tree = Tree::<Aabb>::new();
+    let mut pairs = Vec::new();
+    let mut run = Run {
+        n,
+        frames: count,
+        pairs: 0,
+        build_ms: 0.0,
+        frame_ms: Vec::with_capacity(count),
+        digest: PairDigest::default(),
+        bytes: 0,
+    };
+    for f in 0..count {
+        let boxes = frames.frame(f);
+        if let Some(writer) = dump {
+            writer.write_frame(boxes).map_err(|e| e.to_string())?;
+        }
+        let started = Instant::now();
+        if f == 0 {
+            tree = Tree::from_bounds(boxes).map_err(|e| format!("frame 0: {e}"))?;
+        } else {
+            tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?;
+        }
+        tree.pairs_into(&mut pairs);
+        let ms = started.elapsed().as_secs_f64() * 1e3;
+        if f == 0 {
+            run.build_ms = ms;
+        } else {
+            run.frame_ms.push(ms);
+        }
+        run.pairs += pairs.len() as u64;
+        run.digest += PairDigest::of_pairs(pairs.iter().copied());
+        progress.inc(1);
+    }
+    progress.finish_and_clear();
+    run.bytes = tree.memory_bytes();
+    Ok(run)
+}
+
+fn print(run: &Run, threads: usize, source: &str) {
+    let mut sorted = run.frame_ms.clone();
+    sorted.sort_by(f64::total_cmp);
+    let median = match sorted.len() {
+        0 => f64::NAN,
+        k if k % 2 == 1 => sorted[k / 2],
+        k => 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]),
+    };
+    let mean = if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
+    let avg_pairs = run.pairs as f64 / run.frames as f64;
+    let per_body = run.bytes as f64 / run.n.max(1) as f64;
+    println!("n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body");
+    println!(
+        "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}",
+        run.n, run.frames, run.build_ms, run.digest
+    );
+}
