@@ -27,7 +27,11 @@ pub(crate) fn build_morton<B: Bound>(leaves: &mut Vec<Atom<B>>, out: &mut [Node<
     let mut atoms: Vec<Atom<B>> = clusters
         .iter()
         .map(|&(start, end)| {
+            if end - start == 1 {
+                return leaves[start];
+            }
             let bound = leaves[start + 1..end].iter().fold(leaves[start].bound, |b, a| b.merge(&a.bound));
+            // A cluster is named by the position of its first leaf.
             Atom { r: Ref(start as u32), bound, center: bound.center(), weight: (end - start) as u32 }
         })
         .collect();

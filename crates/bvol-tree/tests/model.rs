@@ -245,7 +245,7 @@ fn run<B: TestBound>(config: Config, ops: &[Op<B>]) -> Result<(), TestCaseError>
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(400))]
+    #![proptest_config(ProptestConfig::with_cases(3000))]
 
     #[test]
     fn aabb_tree_matches_brute_force(config in config(), ops in prop::collection::vec(op::<Aabb>(), 1..60)) {

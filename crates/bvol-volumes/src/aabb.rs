@@ -81,10 +81,7 @@ impl Aabb {
 
     /// The smallest box holding both.
     pub fn merge(&self, other: &Aabb) -> Aabb {
-        Aabb {
-            min: self.min.min(other.min),
-            max: self.max.max(other.max),
-        }
+        Aabb { min: self.min.min(other.min), max: self.max.max(other.max) }
     }
 
     /// Itself: an AABB is its own tight box.

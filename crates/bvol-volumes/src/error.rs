@@ -38,12 +38,7 @@ pub struct UnknownMethod {
 
 impl fmt::Display for UnknownMethod {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(
-            f,
-            "unknown method {:?}; expected one of: {}",
-            self.name,
-            self.expected.join(", ")
-        )
+        write!(f, "unknown method {:?}; expected one of: {}", self.name, self.expected.join(", "))
     }
 }
 

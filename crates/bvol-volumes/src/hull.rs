@@ -33,17 +33,12 @@ struct Frame<'a> {
 impl<'a> Frame<'a> {
     /// The frame of a non-empty set of finite points.
     fn new(points: &'a [Vec3]) -> Self {
-        let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
+        let (lo, hi) =
+            points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
         let half = (hi - lo) * 0.5;
         let eps = 3.0 * (half.x + half.y + half.z) * f64::from(f32::EPSILON);
-        Frame {
-            points,
-            centre: (lo + hi) * 0.5,
-            eps,
-        }
+        Frame { points, centre: (lo + hi) * 0.5, eps }
     }
 
     /// Point `i` relative to the centre: rounded, for plane distances.
@@ -65,10 +60,7 @@ impl<'a> Frame<'a> {
     fn farthest(&self, measure: impl Fn(DVec3) -> f64) -> (u32, f64) {
         (0..self.points.len() as u32)
             .map(|i| (i, measure(self.at(i))))
-            .fold(
-                (0, f64::NEG_INFINITY),
-                |best, x| if x.1 > best.1 { x } else { best },
-            )
+            .fold((0, f64::NEG_INFINITY), |best, x| if x.1 > best.1 { x } else { best })
     }
 }
 
@@ -121,10 +113,7 @@ impl ConvexHull {
         // lowers the dimension.
         let (a, b) = widest_axis_extremes(&frame);
         let (pa, pb) = (frame.at(a), frame.at(b));
-        let Some(axis) = (pb - pa)
-            .try_normalize()
-            .filter(|_| pa.distance(pb) > frame.eps)
-        else {
+        let Some(axis) = (pb - pa).try_normalize().filter(|_| pa.distance(pb) > frame.eps) else {
             return Ok(Self::point(&frame, a));
         };
         let (c, off_line) = frame.farthest(|p| (p - pa).cross(axis).length());
@@ -199,11 +188,8 @@ impl ConvexHull {
         used.sort_unstable();
         used.dedup();
         let vertices: Vec<u32> = used.iter().map(|&v| tri_vertices[v as usize]).collect();
-        let loops: Vec<u32> = faces
-            .loops
-            .iter()
-            .map(|v| used.binary_search(v).unwrap_or(0) as u32)
-            .collect();
+        let loops: Vec<u32> =
+            faces.loops.iter().map(|v| used.binary_search(v).unwrap_or(0) as u32).collect();
         Self::assemble(frame, 3, vertices, &loops, &faces.starts, &faces.planes)
     }
 
@@ -221,17 +207,10 @@ impl ConvexHull {
         ConvexHull {
             vertices: vertices.iter().map(|&i| frame.points[i as usize]).collect(),
             face_vertices: loops.to_vec(),
-            face_starts: if starts.is_empty() {
-                vec![0]
-            } else {
-                starts.to_vec()
-            },
+            face_starts: if starts.is_empty() { vec![0] } else { starts.to_vec() },
             normals: planes.iter().map(|p| p.0).collect(),
             // From the frame's origin to the input's.
-            offsets: planes
-                .iter()
-                .map(|&(n, d)| d + n.dot(frame.centre))
-                .collect(),
+            offsets: planes.iter().map(|&(n, d)| d + n.dot(frame.centre)).collect(),
             dimension,
             tolerance: frame.eps,
         }
@@ -313,11 +292,7 @@ impl ConvexHull {
 
     /// Number of undirected edges: `edges().count()`, without walking them.
     pub fn edge_count(&self) -> usize {
-        if self.dimension == 1 {
-            1
-        } else {
-            self.face_vertices.len() / 2
-        }
+        if self.dimension == 1 { 1 } else { self.face_vertices.len() / 2 }
     }
 
     /// Enclosed volume, 0 unless the hull is solid: the tetrahedra from the
@@ -328,18 +303,13 @@ impl ConvexHull {
         }
         let o = self.vertices[0].as_dvec3();
         let at = |v: u32| self.vertices[v as usize].as_dvec3() - o;
-        self.triangles()
-            .map(|[a, b, c]| at(a).dot(at(b).cross(at(c))))
-            .sum::<f64>()
-            / 6.0
+        self.triangles().map(|[a, b, c]| at(a).dot(at(b).cross(at(c)))).sum::<f64>() / 6.0
     }
 
     /// Surface area, in f64; a flat hull counts both sides (twice its polygon).
     pub fn surface_area(&self) -> f64 {
         let at = |v: u32| self.vertices[v as usize].as_dvec3();
-        self.triangles()
-            .map(|[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length())
-            .sum::<f64>()
+        self.triangles().map(|[a, b, c]| (at(b) - at(a)).cross(at(c) - at(a)).length()).sum::<f64>()
             / 2.0
     }
 }

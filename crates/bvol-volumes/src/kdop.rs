@@ -71,10 +71,7 @@ impl<const N: usize> Kdop<N> {
                 hi[i] = hi[i].max(s);
             }
         }
-        Kdop {
-            min: lo.map(down),
-            max: hi.map(up),
-        }
+        Kdop { min: lo.map(down), max: hi.map(up) }
     }
 
     /// Whether `p` lies inside or on every slab (evaluated in f64).
@@ -153,25 +150,15 @@ impl<const N: usize> Kdop<N> {
             let n = as_dvec3(Self::DIRECTIONS[i]);
             let len = n.length();
             [
-                Plane {
-                    normal: n / len,
-                    offset: self.max[i] as f64 / len,
-                },
-                Plane {
-                    normal: -n / len,
-                    offset: -(self.min[i] as f64) / len,
-                },
+                Plane { normal: n / len, offset: self.max[i] as f64 / len },
+                Plane { normal: -n / len, offset: -(self.min[i] as f64) / len },
             ]
         })
     }
 
     /// A tolerance for "on the plane", relative to the polytope's size and place.
     fn tolerance(&self) -> f64 {
-        let scale = self
-            .min
-            .iter()
-            .chain(&self.max)
-            .fold(0.0f64, |m, v| m.max(v.abs() as f64));
+        let scale = self.min.iter().chain(&self.max).fold(0.0f64, |m, v| m.max(v.abs() as f64));
         1e-9 * scale.max(f64::MIN_POSITIVE)
     }
 
@@ -215,11 +202,8 @@ impl<const N: usize> Kdop<N> {
 
 /// The point on three planes, or `None` where they do not meet in one point.
 fn intersect(a: Plane, b: Plane, c: Plane) -> Option<DVec3> {
-    let (bc, ca, ab) = (
-        b.normal.cross(c.normal),
-        c.normal.cross(a.normal),
-        a.normal.cross(b.normal),
-    );
+    let (bc, ca, ab) =
+        (b.normal.cross(c.normal), c.normal.cross(a.normal), a.normal.cross(b.normal));
     let det = a.normal.dot(bc);
     (det.abs() > 1e-12).then(|| (bc * a.offset + ca * b.offset + ab * c.offset) / det)
 }

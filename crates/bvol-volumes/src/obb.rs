@@ -37,11 +37,7 @@ pub struct Obb {
 
 impl Default for Obb {
     fn default() -> Self {
-        Obb {
-            center: Vec3::ZERO,
-            axes: Mat3::IDENTITY,
-            half_extents: Vec3::ZERO,
-        }
+        Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ZERO }
     }
 }
 
@@ -50,9 +46,7 @@ impl Default for Obb {
 /// degenerate input.
 pub(crate) fn basis(a: DVec3, b: DVec3) -> DMat3 {
     let x = a.try_normalize().unwrap_or(DVec3::X);
-    let y = (b - x * x.dot(b))
-        .try_normalize()
-        .unwrap_or_else(|| x.any_orthonormal_vector());
+    let y = (b - x * x.dot(b)).try_normalize().unwrap_or_else(|| x.any_orthonormal_vector());
     DMat3::from_cols(x, y, x.cross(y))
 }
 
@@ -97,11 +91,7 @@ impl Obb {
         let c = center.as_dvec3();
         let h = points().fold(DVec3::ZERO, |h, p| h.max((at * (p - c)).abs()));
         let half_extents = Vec3::new(up_safe(h.x), up_safe(h.y), up_safe(h.z));
-        Obb {
-            center,
-            axes,
-            half_extents,
-        }
+        Obb { center, axes, half_extents }
     }
 
     /// Whether `p` lies inside or on the box, evaluated in f64.
@@ -150,11 +140,7 @@ impl Obb {
         let pad =
             slip + 8.0 * f32::EPSILON as f64 * (h.length() + c.as_dvec3().abs().max_element());
         let half_extents = Vec3::new(up_safe(h.x + pad), up_safe(h.y + pad), up_safe(h.z + pad));
-        Obb {
-            center: c,
-            axes,
-            half_extents,
-        }
+        Obb { center: c, axes, half_extents }
     }
 
     /// A box holding both: centre between them, axes from the halfway rotation of
@@ -167,11 +153,8 @@ impl Obb {
         }
         let m = DMat3::from_quat((q0 + q1).normalize());
         let m = basis(m.x_axis, m.y_axis);
-        let corners: Vec<DVec3> = self
-            .corners_f64()
-            .into_iter()
-            .chain(other.corners_f64())
-            .collect();
+        let corners: Vec<DVec3> =
+            self.corners_f64().into_iter().chain(other.corners_f64()).collect();
         Obb::on_basis_f64(m, || corners.iter().copied())
     }
 

@@ -26,10 +26,7 @@ impl Default for Pose {
 
 impl Pose {
     /// The pose that leaves every point where it is.
-    pub const IDENTITY: Pose = Pose {
-        position: Vec3::ZERO,
-        rotation: Quat::IDENTITY,
-    };
+    pub const IDENTITY: Pose = Pose { position: Vec3::ZERO, rotation: Quat::IDENTITY };
 
     /// A pose from a position and a rotation.
     pub const fn new(position: Vec3, rotation: Quat) -> Self {
@@ -54,10 +51,7 @@ impl Pose {
     /// The pose that undoes this one.
     pub fn inverse(&self) -> Pose {
         let r = self.rotation.inverse();
-        Pose {
-            position: -(r * self.position),
-            rotation: r,
-        }
+        Pose { position: -(r * self.position), rotation: r }
     }
 
     /// The rotation as an exactly orthonormal f64 matrix (the quaternion normalised in f64).

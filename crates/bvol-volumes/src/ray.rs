@@ -41,10 +41,7 @@ pub(crate) struct SlabClip {
 
 impl SlabClip {
     pub(crate) fn new(max_t: f64) -> Self {
-        SlabClip {
-            enter: 0.0,
-            exit: max_t,
-        }
+        SlabClip { enter: 0.0, exit: max_t }
     }
 
     /// Narrows the interval by one slab; returns false once it is empty.
@@ -71,9 +68,5 @@ pub(crate) fn ray_f64(ray: &Ray, max_t: f32) -> Option<(DVec3, DVec3, f64)> {
     if !ray.is_valid() || max_t.is_nan() || max_t < 0.0 {
         return None;
     }
-    Some((
-        ray.origin.as_dvec3(),
-        ray.direction.as_dvec3(),
-        max_t as f64,
-    ))
+    Some((ray.origin.as_dvec3(), ray.direction.as_dvec3(), max_t as f64))
 }

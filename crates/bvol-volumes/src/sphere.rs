@@ -36,14 +36,8 @@ impl Sphere {
     pub(crate) fn enclosing(center: DVec3, points: &[Vec3]) -> Sphere {
         let c = center.as_vec3();
         let cd = c.as_dvec3();
-        let r2 = points
-            .iter()
-            .map(|p| (p.as_dvec3() - cd).length_squared())
-            .fold(0.0, f64::max);
-        Sphere {
-            center: c,
-            radius: up_safe(r2.sqrt()),
-        }
+        let r2 = points.iter().map(|p| (p.as_dvec3() - cd).length_squared()).fold(0.0, f64::max);
+        Sphere { center: c, radius: up_safe(r2.sqrt()) }
     }
 
     /// Whether `p` lies inside or on the sphere; evaluated in f64, so it is exact
@@ -71,10 +65,7 @@ impl Sphere {
         let exact = pose.apply_f64(self.center.as_dvec3());
         let c = exact.as_vec3();
         let slip = (c.as_dvec3() - exact).length();
-        Sphere {
-            center: c,
-            radius: up_safe(self.radius as f64 + slip),
-        }
+        Sphere { center: c, radius: up_safe(self.radius as f64 + slip) }
     }
 
     /// The smallest sphere holding both: the larger one if it holds the other,
@@ -100,10 +91,7 @@ impl Sphere {
         let r = (l + r0 + r1) / 2.0;
         let c = (c0 + (c1 - c0) * ((r - r0) / l)).as_vec3().as_dvec3();
         let radius = ((c - c0).length() + r0).max((c - c1).length() + r1);
-        Sphere {
-            center: c.as_vec3(),
-            radius: up_safe(radius),
-        }
+        Sphere { center: c.as_vec3(), radius: up_safe(radius) }
     }
 
     /// The tight box around the sphere, rounded outward.

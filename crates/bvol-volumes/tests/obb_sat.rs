@@ -36,12 +36,7 @@ impl Exact {
             );
             c + dual * s
         });
-        Exact {
-            center: c,
-            to_local: a.transpose(),
-            half: h,
-            corners,
-        }
+        Exact { center: c, to_local: a.transpose(), half: h, corners }
     }
 
     /// Whether the segment p..q meets the box (closed).
@@ -85,10 +80,7 @@ fn exact_intersect(a: &Obb, b: &Obb) -> bool {
 
 /// The box grown on every side by `pad`.
 fn grown(b: &Obb, pad: f32) -> Obb {
-    Obb {
-        half_extents: b.half_extents + Vec3::splat(pad),
-        ..*b
-    }
+    Obb { half_extents: b.half_extents + Vec3::splat(pad), ..*b }
 }
 
 struct Tally {
@@ -129,39 +121,21 @@ fn random_box(rng: &mut SmallRng, center: Vec3, rotation: Quat) -> Obb {
         rng.random_range(0.01..2.0),
         rng.random_range(0.01..2.0),
     );
-    Obb {
-        center,
-        axes: Mat3::from_quat(rotation),
-        half_extents: h,
-    }
+    Obb { center, axes: Mat3::from_quat(rotation), half_extents: h }
 }
 
 fn random_vec(rng: &mut SmallRng, r: f32) -> Vec3 {
-    Vec3::new(
-        rng.random_range(-r..r),
-        rng.random_range(-r..r),
-        rng.random_range(-r..r),
-    )
+    Vec3::new(rng.random_range(-r..r), rng.random_range(-r..r), rng.random_range(-r..r))
 }
 
 /// The distance along `u` at which box `b` (its centre at a.center + s u) stops
 /// touching `a`, by bisection on the exact check.
 fn touching_distance(a: &Obb, b: &Obb, u: Vec3) -> f32 {
-    let at = |s: f32| Obb {
-        center: a.center + u * s,
-        ..*b
-    };
-    let (mut lo, mut hi) = (
-        0.0f32,
-        2.0 * (a.half_extents.length() + b.half_extents.length()),
-    );
+    let at = |s: f32| Obb { center: a.center + u * s, ..*b };
+    let (mut lo, mut hi) = (0.0f32, 2.0 * (a.half_extents.length() + b.half_extents.length()));
     for _ in 0..40 {
         let mid = 0.5 * (lo + hi);
-        if exact_intersect(a, &at(mid)) {
-            lo = mid
-        } else {
-            hi = mid
-        }
+        if exact_intersect(a, &at(mid)) { lo = mid } else { hi = mid }
     }
     0.5 * (lo + hi)
 }
@@ -169,12 +143,7 @@ fn touching_distance(a: &Obb, b: &Obb, u: Vec3) -> f32 {
 #[test]
 fn obb_sat_never_separates_intersecting_boxes() {
     let mut rng = SmallRng::seed_from_u64(0x5A7_0BB);
-    let mut tally = Tally {
-        pairs: 0,
-        wrong_separated: vec![],
-        loose: vec![],
-        overlapping: 0,
-    };
+    let mut tally = Tally { pairs: 0, wrong_separated: vec![], loose: vec![], overlapping: 0 };
     let scales = [1e-3f32, 1.0, 1e3];
 
     // Random pairs at random scales and offsets.
@@ -182,16 +151,9 @@ fn obb_sat_never_separates_intersecting_boxes() {
         let (s, off) = (scales[i % 3], random_vec(&mut rng, 1e3));
         let qa = common::random_rotation(&mut rng);
         let a = random_box(&mut rng, off, qa);
-        let (cb, qb) = (
-            off + random_vec(&mut rng, 3.0),
-            common::random_rotation(&mut rng),
-        );
+        let (cb, qb) = (off + random_vec(&mut rng, 3.0), common::random_rotation(&mut rng));
         let b = random_box(&mut rng, cb, qb);
-        let scaled = |o: Obb| Obb {
-            center: o.center * s,
-            half_extents: o.half_extents * s,
-            ..o
-        };
+        let scaled = |o: Obb| Obb { center: o.center * s, half_extents: o.half_extents * s, ..o };
         tally.check(scaled(a), scaled(b));
     }
     // Face on face: b stacked on a's +z face, turned about that face's normal.
@@ -214,15 +176,9 @@ fn obb_sat_never_separates_intersecting_boxes() {
         let q = common::random_rotation(&mut rng);
         let c = random_vec(&mut rng, 10.0);
         let a = random_box(&mut rng, c, q);
-        let inner = Obb {
-            half_extents: a.half_extents * rng.random_range(0.01f32..0.9),
-            ..a
-        };
+        let inner = Obb { half_extents: a.half_extents * rng.random_range(0.01f32..0.9), ..a };
         let spin = Mat3::from_quat(common::random_rotation(&mut rng));
-        let turned = Obb {
-            axes: a.axes * spin,
-            ..inner
-        };
+        let turned = Obb { axes: a.axes * spin, ..inner };
         tally.check(a, turned);
         let b = random_box(&mut rng, Vec3::ZERO, q);
         let side = Vec3::new(
@@ -230,13 +186,7 @@ fn obb_sat_never_separates_intersecting_boxes() {
             rng.random_range(-2.0..2.0),
             rng.random_range(-2.0..2.0),
         );
-        tally.check(
-            a,
-            Obb {
-                center: a.center + q * side,
-                ..b
-            },
-        );
+        tally.check(a, Obb { center: a.center + q * side, ..b });
     }
     // Near touching at near-parallel orientations: b turned from a by 1e-7..1e-3 rad,
     // placed at the exact touching distance along a random direction, then nudged in and out.
@@ -250,13 +200,7 @@ fn obb_sat_never_separates_intersecting_boxes() {
         let u = common::random_unit(&mut rng);
         let s = touching_distance(&a, &b, u);
         for nudge in [-1e-3f32, -1e-5, -1e-7, 0.0, 1e-7, 1e-5, 1e-3] {
-            tally.check(
-                a,
-                Obb {
-                    center: a.center + u * (s * (1.0 + nudge)),
-                    ..b
-                },
-            );
+            tally.check(a, Obb { center: a.center + u * (s * (1.0 + nudge)), ..b });
         }
     }
     // Edge on edge: a's +x+y edge against b's edge, crossed at a small angle.
@@ -271,21 +215,11 @@ fn obb_sat_never_separates_intersecting_boxes() {
         let u = Vec3::new(1.0, 1.0, 0.0).normalize();
         let s = touching_distance(&a, &b0, u);
         for nudge in [-1e-6f32, 0.0, 1e-6] {
-            tally.check(
-                a,
-                Obb {
-                    center: u * (s * (1.0 + nudge)),
-                    ..b0
-                },
-            );
+            tally.check(a, Obb { center: u * (s * (1.0 + nudge)), ..b0 });
         }
     }
 
-    assert!(
-        tally.pairs >= 1_000_000,
-        "only {} ordered pairs",
-        tally.pairs
-    );
+    assert!(tally.pairs >= 1_000_000, "only {} ordered pairs", tally.pairs);
     assert!(
         tally.wrong_separated.is_empty(),
         "{} of {} pairs called separated while intersecting, e.g. {:?}",

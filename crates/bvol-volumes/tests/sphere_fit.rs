@@ -23,10 +23,7 @@ fn fit_all(points: &[Vec3]) -> Vec<(SphereMethod, Sphere)> {
         .iter()
         .map(|&m| {
             let s = fit(points, m);
-            assert!(
-                s.radius >= 0.0 && s.radius.is_finite() && s.center.is_finite(),
-                "{m}: {s:?}"
-            );
+            assert!(s.radius >= 0.0 && s.radius.is_finite() && s.center.is_finite(), "{m}: {s:?}");
             if let Some(p) = points.iter().find(|&&p| !s.contains_point(p)) {
                 panic!("{m}: {s:?} misses {p:?}");
             }
@@ -43,11 +40,7 @@ fn rounding(s: &Sphere) -> f64 {
 
 /// The exact sphere is no larger than any other method's, up to rounding.
 fn assert_exact_smallest(spheres: &[(SphereMethod, Sphere)]) {
-    let exact = spheres
-        .iter()
-        .find(|(m, _)| *m == SphereMethod::Exact)
-        .expect("exact")
-        .1;
+    let exact = spheres.iter().find(|(m, _)| *m == SphereMethod::Exact).expect("exact").1;
     for (m, s) in spheres {
         assert!(
             exact.radius as f64 <= s.radius as f64 + rounding(&exact),
@@ -68,10 +61,7 @@ fn brute_force_radius(points: &[Vec3]) -> f64 {
     let n = p.len();
     let mut best = f64::INFINITY;
     let mut consider = |c: DVec3, through: &[DVec3]| {
-        let r = through
-            .iter()
-            .map(|&q| (q - c).length())
-            .fold(0.0, f64::max);
+        let r = through.iter().map(|&q| (q - c).length()).fold(0.0, f64::max);
         if r < best && p.iter().all(|&q| (q - c).length() <= r * (1.0 + 1e-9)) {
             best = r;
         }
@@ -142,11 +132,7 @@ fn placement(max_offset: f64, relative: bool) -> impl Strategy<Value = Placement
     )
         .prop_map(move |((a, b, c), e, (x, y, z))| {
             let scale = 10f64.powf(e);
-            let reach = if relative {
-                max_offset * scale
-            } else {
-                max_offset
-            };
+            let reach = if relative { max_offset * scale } else { max_offset };
             Placement {
                 rotation: DQuat::from_euler(EulerRot::ZYX, a, b, c),
                 scale,
@@ -186,19 +172,12 @@ fn shaped(shape: Shape, raw: &[DVec3]) -> Vec<DVec3> {
     match shape {
         Shape::Cloud => raw.to_vec(),
         Shape::Duplicates => vec![raw[0]; raw.len()],
-        Shape::Collinear => raw
-            .iter()
-            .map(|p| DVec3::new(p.x, 0.3 * p.x, -0.5 * p.x))
-            .collect(),
+        Shape::Collinear => raw.iter().map(|p| DVec3::new(p.x, 0.3 * p.x, -0.5 * p.x)).collect(),
         Shape::Coplanar => raw.iter().map(|p| DVec3::new(p.x, p.y, 0.0)).collect(),
-        Shape::Cospherical => raw
-            .iter()
-            .map(|p| p.try_normalize().unwrap_or(DVec3::Y))
-            .collect(),
-        Shape::Cocircular => raw
-            .iter()
-            .map(|p| DVec3::new((p.x * PI).cos(), (p.x * PI).sin(), 0.0))
-            .collect(),
+        Shape::Cospherical => raw.iter().map(|p| p.try_normalize().unwrap_or(DVec3::Y)).collect(),
+        Shape::Cocircular => {
+            raw.iter().map(|p| DVec3::new((p.x * PI).cos(), (p.x * PI).sin(), 0.0)).collect()
+        }
     }
 }
 
@@ -218,23 +197,12 @@ fn check_set(shape: Shape, points: &[Vec3]) {
             // points off their line and of the centre.
             let half = points
                 .iter()
-                .flat_map(|a| {
-                    points
-                        .iter()
-                        .map(move |b| a.as_dvec3().distance(b.as_dvec3()))
-                })
+                .flat_map(|a| points.iter().map(move |b| a.as_dvec3().distance(b.as_dvec3())))
                 .fold(0.0, f64::max)
                 / 2.0;
-            let size = points
-                .iter()
-                .map(|p| p.abs().max_element())
-                .fold(0.0, f32::max) as f64;
+            let size = points.iter().map(|p| p.abs().max_element()).fold(0.0, f32::max) as f64;
             let tol = 1e-6 * half + 4.0 * f32::EPSILON as f64 * size;
-            assert!(
-                (exact.radius as f64 - half).abs() <= tol,
-                "{} vs {half}",
-                exact.radius
-            );
+            assert!((exact.radius as f64 - half).abs() <= tol, "{} vs {half}", exact.radius);
         }
         _ => {}
     }
@@ -260,27 +228,16 @@ proptest! {
 
 /// Small sets near the origin: offsets of at most 2 sizes.
 fn small_set() -> impl Strategy<Value = (Shape, Vec<Vec3>)> {
-    (
-        shape(),
-        prop::collection::vec(coords(), 1..=12),
-        placement(2.0, true),
+    (shape(), prop::collection::vec(coords(), 1..=12), placement(2.0, true)).prop_map(
+        |(shape, raw, place)| {
+            (shape, shaped(shape, &raw).into_iter().map(|p| place.place(p)).collect())
+        },
     )
-        .prop_map(|(shape, raw, place)| {
-            (
-                shape,
-                shaped(shape, &raw)
-                    .into_iter()
-                    .map(|p| place.place(p))
-                    .collect(),
-            )
-        })
 }
 
 /// `n` points inside the ball of radius `0.9 r` about `c`.
 fn inside(c: DVec3, r: f64, raw: &[DVec3]) -> Vec<DVec3> {
-    raw.iter()
-        .map(|&p| c + p.clamp_length_max(1.0) * 0.9 * r)
-        .collect()
+    raw.iter().map(|&p| c + p.clamp_length_max(1.0) * 0.9 * r).collect()
 }
 
 /// The sphere's radius is `want` to 1e-6 of it, once the f32 rounding of the
@@ -288,10 +245,7 @@ fn inside(c: DVec3, r: f64, raw: &[DVec3]) -> Vec<DVec3> {
 /// distance from the origin).
 fn assert_radius(s: &Sphere, want: f64, what: &str) {
     let got = s.radius as f64;
-    assert!(
-        (got - want).abs() <= 1e-6 * want + rounding(s),
-        "{what}: {got} vs {want}"
-    );
+    assert!((got - want).abs() <= 1e-6 * want + rounding(s), "{what}: {got} vs {want}");
 }
 
 proptest! {
@@ -399,15 +353,9 @@ fn real_meshes_match_their_reference_radii() {
         let exact = exact.radius as f64;
         let ritter = fit(points, SphereMethod::Ritter).radius as f64;
         // The reference radii hold to 1e-6, as the exact sphere checks.
-        assert!(
-            ritter >= want * (1.0 - 1e-6),
-            "{}: ritter {ritter} < {want}",
-            reference.name
-        );
-        let ratios: Vec<String> = spheres
-            .iter()
-            .map(|(m, s)| format!("{m} {:.4}", s.radius as f64 / exact))
-            .collect();
+        assert!(ritter >= want * (1.0 - 1e-6), "{}: ritter {ritter} < {want}", reference.name);
+        let ratios: Vec<String> =
+            spheres.iter().map(|(m, s)| format!("{m} {:.4}", s.radius as f64 / exact)).collect();
         println!(
             "{:9} exact {exact:.9} (ref {want}), ritter ref {:.4}: {}",
             reference.name,
@@ -443,16 +391,8 @@ fn empty_and_non_finite_input_are_errors() {
     let inf = [Vec3::new(f32::INFINITY, 0.0, 0.0)];
     for &m in SphereMethod::ALL {
         assert_eq!(Sphere::fit(&[], m), Err(FitError::Empty), "{m}");
-        assert_eq!(
-            Sphere::fit(&nan, m),
-            Err(FitError::NonFinite { index: 2 }),
-            "{m}"
-        );
-        assert_eq!(
-            Sphere::fit(&inf, m),
-            Err(FitError::NonFinite { index: 0 }),
-            "{m}"
-        );
+        assert_eq!(Sphere::fit(&nan, m), Err(FitError::NonFinite { index: 2 }), "{m}");
+        assert_eq!(Sphere::fit(&inf, m), Err(FitError::NonFinite { index: 0 }), "{m}");
     }
 }
 

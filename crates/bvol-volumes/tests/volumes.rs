@@ -185,14 +185,8 @@ fn kdop_exact_shapes() {
         .map(|i| Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, ((i >> 2) & 1) as f32) * 2.0)
         .collect();
     for (v, a) in [
-        (
-            Kdop6::fit(&cube).unwrap().volume(),
-            Kdop6::fit(&cube).unwrap().surface_area(),
-        ),
-        (
-            Kdop26::fit(&cube).unwrap().volume(),
-            Kdop26::fit(&cube).unwrap().surface_area(),
-        ),
+        (Kdop6::fit(&cube).unwrap().volume(), Kdop6::fit(&cube).unwrap().surface_area()),
+        (Kdop26::fit(&cube).unwrap().volume(), Kdop26::fit(&cube).unwrap().surface_area()),
     ] {
         assert!((v - 8.0).abs() < 1e-5 && (a - 24.0).abs() < 1e-5, "{v} {a}");
     }
@@ -226,32 +220,20 @@ fn overlap_tests_at_exact_touching() {
     let unit = Aabb::new(-Vec3::ONE, Vec3::ONE);
     // Face, edge and corner contact: touching counts; a hair beyond does not.
     // Pythagorean directions, so the touching centres and radii are exact in f32.
-    for (dir, len) in [
-        (Vec3::X, 1.0),
-        (Vec3::new(3.0, 4.0, 0.0), 5.0),
-        (Vec3::new(2.0, 3.0, 6.0), 7.0),
-    ] {
+    for (dir, len) in
+        [(Vec3::X, 1.0), (Vec3::new(3.0, 4.0, 0.0), 5.0), (Vec3::new(2.0, 3.0, 6.0), 7.0)]
+    {
         let closest = Vec3::select(dir.abs().cmpgt(Vec3::ZERO), dir.signum(), Vec3::ZERO);
         for k in [0.5f32, 1.0, 3.0] {
             let r = k * len;
             let touching = Sphere::new(closest + dir * k, r);
             let apart = Sphere::new(closest + dir * k * 1.001, r);
             assert!(touching.overlaps_aabb(&unit) && !apart.overlaps_aabb(&unit));
-            let obb = Obb {
-                center: Vec3::ZERO,
-                axes: Mat3::IDENTITY,
-                half_extents: Vec3::ONE,
-            };
+            let obb = Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ONE };
             assert!(obb.overlaps_sphere(&touching) && !obb.overlaps_sphere(&apart));
             let pose = Pose::new(Vec3::new(5.0, -2.0, 1.0), Quat::from_rotation_y(0.7));
-            assert!(
-                obb.transformed(&pose)
-                    .overlaps_sphere(&touching.transformed(&pose))
-            );
-            assert!(
-                !obb.transformed(&pose)
-                    .overlaps_sphere(&apart.transformed(&pose))
-            );
+            assert!(obb.transformed(&pose).overlaps_sphere(&touching.transformed(&pose)));
+            assert!(!obb.transformed(&pose).overlaps_sphere(&apart.transformed(&pose)));
         }
     }
     let a = Sphere::new(Vec3::ZERO, 1.0);
@@ -324,61 +306,26 @@ proptest! {
 #[test]
 fn ray_special_cases() {
     let b = Aabb::new(Vec3::ZERO, Vec3::ONE);
-    let obb = Obb {
-        center: Vec3::splat(0.5),
-        axes: Mat3::IDENTITY,
-        half_extents: Vec3::splat(0.5),
-    };
+    let obb =
+        Obb { center: Vec3::splat(0.5), axes: Mat3::IDENTITY, half_extents: Vec3::splat(0.5) };
     let k = Kdop6::fit(&[Vec3::ZERO, Vec3::ONE]).unwrap();
-    let entries = |r: Ray| {
-        [
-            b.ray_entry(&r, 100.0),
-            obb.ray_entry(&r, 100.0),
-            k.ray_entry(&r, 100.0),
-        ]
-    };
+    let entries =
+        |r: Ray| [b.ray_entry(&r, 100.0), obb.ray_entry(&r, 100.0), k.ray_entry(&r, 100.0)];
     // Along +x with zero y and z components, lying in the face plane y = 0.
-    assert_eq!(
-        entries(Ray::new(Vec3::new(-2.0, 0.0, 0.5), Vec3::X)),
-        [Some(2.0); 3]
-    );
+    assert_eq!(entries(Ray::new(Vec3::new(-2.0, 0.0, 0.5), Vec3::X)), [Some(2.0); 3]);
     // Starting on a face, pointing in or out: entry 0.
-    assert_eq!(
-        entries(Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::X)),
-        [Some(0.0); 3]
-    );
-    assert_eq!(
-        entries(Ray::new(Vec3::new(0.0, 0.5, 0.5), -Vec3::X)),
-        [Some(0.0); 3]
-    );
+    assert_eq!(entries(Ray::new(Vec3::new(0.0, 0.5, 0.5), Vec3::X)), [Some(0.0); 3]);
+    assert_eq!(entries(Ray::new(Vec3::new(0.0, 0.5, 0.5), -Vec3::X)), [Some(0.0); 3]);
     // Parallel to a slab and outside it: miss, without NaN.
-    assert_eq!(
-        entries(Ray::new(Vec3::new(-2.0, 1.5, 0.5), Vec3::X)),
-        [None; 3]
-    );
+    assert_eq!(entries(Ray::new(Vec3::new(-2.0, 1.5, 0.5), Vec3::X)), [None; 3]);
     // Entering beyond max_t, zero and NaN directions: miss.
-    assert_eq!(
-        b.ray_entry(&Ray::new(Vec3::new(-2.0, 0.5, 0.5), Vec3::X), 1.0),
-        None
-    );
+    assert_eq!(b.ray_entry(&Ray::new(Vec3::new(-2.0, 0.5, 0.5), Vec3::X), 1.0), None);
     assert_eq!(entries(Ray::new(Vec3::splat(0.5), Vec3::ZERO)), [None; 3]);
-    assert_eq!(
-        entries(Ray::new(Vec3::splat(0.5), Vec3::new(f32::NAN, 0.0, 1.0))),
-        [None; 3]
-    );
+    assert_eq!(entries(Ray::new(Vec3::splat(0.5), Vec3::new(f32::NAN, 0.0, 1.0))), [None; 3]);
     let s = Sphere::new(Vec3::ZERO, 1.0);
-    assert_eq!(
-        s.ray_entry(&Ray::new(Vec3::new(-3.0, 0.0, 0.0), Vec3::X), 10.0),
-        Some(2.0)
-    );
-    assert_eq!(
-        s.ray_entry(&Ray::new(Vec3::new(-3.0, 1.0, 0.0), Vec3::X), 10.0),
-        Some(3.0)
-    ); // grazing
-    assert_eq!(
-        s.ray_entry(&Ray::new(Vec3::new(3.0, 0.0, 0.0), Vec3::X), 10.0),
-        None
-    ); // away
+    assert_eq!(s.ray_entry(&Ray::new(Vec3::new(-3.0, 0.0, 0.0), Vec3::X), 10.0), Some(2.0));
+    assert_eq!(s.ray_entry(&Ray::new(Vec3::new(-3.0, 1.0, 0.0), Vec3::X), 10.0), Some(3.0)); // grazing
+    assert_eq!(s.ray_entry(&Ray::new(Vec3::new(3.0, 0.0, 0.0), Vec3::X), 10.0), None); // away
     assert_eq!(s.ray_entry(&Ray::new(Vec3::ZERO, Vec3::X), 10.0), Some(0.0)); // inside
     // Far away and tiny: the stable form keeps the answer.
     let far = Sphere::new(Vec3::new(1e6, 0.0, 0.0), 1e-2);

@@ -29,9 +29,16 @@ use crate::obb::basis;
 /// differences of f32 points stay accurate far below it.
 const FLAT: f64 = 1e-9;
 
+/// Width of the base triangle, relative to its length, below which the
+/// extremes count as nearly collinear and the third vertex is sought among all
+/// points.
+const SLIVER: f64 = 1e-2;
+
 /// Relative thickness below which a box counts as flat: above the f32
-/// rounding of points (about 6e-8 of their size), far below real thin parts.
-const FLAT_BOX: f64 = 1e-5;
+/// rounding of points (about 6e-8 of their coordinates) unless they lie far
+/// from the origin for their size, far below real thin parts. Too large, and
+/// a tilted box would rank as flat beside the plane's own.
+const FLAT_BOX: f64 = 1e-6;
 
 /// Points per block of the extreme-point pass.
 const BLOCK: usize = 64;
@@ -72,84 +79,75 @@ impl<const N: usize> Extremes<N> {
     /// point instead, and the final box is refit on all points anyway.
     fn of(points: &[Vec3]) -> Self {
         // Whole vectors of lanes: 8 for DiTO-14, 16 for DiTO-26.
-        let (lo, lo_at, hi, hi_at) = if N <= 8 {
-            scan::<N, 8>(points)
-        } else {
-            scan::<N, 16>(points)
-        };
+        let (lo, lo_at, hi, hi_at) =
+            if N <= 8 { scan::<N, 8>(points) } else { scan::<N, 16>(points) };
         let at = |j: usize| points[j].as_dvec3();
-        Extremes {
-            lo,
-            hi,
-            lo_point: lo_at.map(at),
-            hi_point: hi_at.map(at),
-        }
+        Extremes { lo, hi, lo_point: lo_at.map(at), hi_point: hi_at.map(at) }
     }
 
     /// The AABB's side lengths: the first three directions are the axes, whose
-    /// projections are the coordinates themselves, exact.
+    /// projections are the coordinates themselves; their differences are exact
+    /// in f64.
     fn aabb_lengths(&self) -> DVec3 {
-        DVec3::new(
-            (self.hi[0] - self.lo[0]) as f64,
-            (self.hi[1] - self.lo[1]) as f64,
-            (self.hi[2] - self.lo[2]) as f64,
-        )
+        let [lo, hi] =
+            [self.lo, self.hi].map(|e| DVec3::new(e[0] as f64, e[1] as f64, e[2] as f64));
+        hi - lo
     }
 
     /// All `2N` extreme points.
-    fn points(&self) -> impl Iterator<Item = DVec3> + Clone + '_ {
+    fn points(&self) -> impl Iterator<Item = DVec3> + '_ {
         self.lo_point.iter().chain(&self.hi_point).copied()
     }
 
     /// The best axis triple on the extremes of `all`, or the identity when the
     /// AABB's axes do at least as well or all points coincide.
     fn best_axes(&self, all: &[Vec3]) -> DMat3 {
-        let mut best = Best {
-            axes: DMat3::IDENTITY,
-            rank: rank(self.aabb_lengths()),
-        };
+        let mut best = Best { axes: DMat3::IDENTITY, rank: rank(self.aabb_lengths()) };
         // Base triangle, first edge: the farthest pair of extremes along one direction.
         let Some((p0, p1)) = (0..N)
             .map(|i| (self.lo_point[i], self.hi_point[i]))
-            .max_by(|a, b| {
-                a.0.distance_squared(a.1)
-                    .total_cmp(&b.0.distance_squared(b.1))
-            })
+            .max_by(|a, b| a.0.distance_squared(a.1).total_cmp(&b.0.distance_squared(b.1)))
         else {
             return best.axes;
         };
         let length = p0.distance(p1);
-        if !(length > 0.0) {
+        if length == 0.0 {
             return best.axes; // every point is the same: the AABB is exact
         }
         let e0 = (p1 - p0) / length;
+        // Boxes are measured on the extremes (and on the third vertex below,
+        // should it come from elsewhere).
+        let mut measured: Vec<DVec3> = self.points().collect();
         // Third vertex: the extreme farthest from the line of p0 and p1.
         let line_distance = |q: DVec3| (q - p0).cross(e0).length();
-        let mut p2 = farthest(self.points(), line_distance);
-        if line_distance(p2) <= FLAT * length {
+        let mut p2 = farthest(measured.iter().copied(), line_distance);
+        if line_distance(p2) <= SLIVER * length {
             // Degenerate case 2 of the paper: the extremes are collinear, and the
-            // paper aligns the box with the line, any axes across it. The points
-            // may still span a plane, so look for the third vertex among all of
-            // them first (one more pass, in this rare case only).
+            // paper aligns the box with the line, any axes across it; a sliver
+            // triangle's normal would be as arbitrary, set by rounding. The
+            // points may still span a plane, so look for the third vertex among
+            // all of them first (one more pass, in this rare case only).
             p2 = farthest(all.iter().map(|p| p.as_dvec3()), line_distance);
             if line_distance(p2) <= FLAT * length {
-                best.consider(self.points(), basis(e0, e0.any_orthonormal_vector()));
+                best.consider(&measured, basis(e0, e0.any_orthonormal_vector()));
                 return best.axes;
             }
+            measured.push(p2);
         }
-        best.triangle(self.points(), p0, p1, p2);
+        best.triangle(&measured, p0, p1, p2);
         // The tetrahedra on the extremes farthest above and below the base plane;
         // the paper skips one whose apex lies in the plane (flat input).
         let n = (p1 - p0).cross(p2 - p0).normalize();
         let height = |q: DVec3| (q - p0).dot(n);
-        for apex in [
-            farthest(self.points(), height),
-            farthest(self.points(), |q| -height(q)),
-        ] {
+        let apexes = [
+            farthest(measured.iter().copied(), height),
+            farthest(measured.iter().copied(), |q| -height(q)),
+        ];
+        for apex in apexes {
             if height(apex).abs() > FLAT * length {
-                best.triangle(self.points(), apex, p0, p1);
-                best.triangle(self.points(), apex, p1, p2);
-                best.triangle(self.points(), apex, p2, p0);
+                best.triangle(&measured, apex, p0, p1);
+                best.triangle(&measured, apex, p1, p2);
+                best.triangle(&measured, apex, p2, p0);
             }
         }
         best.axes
@@ -181,11 +179,7 @@ fn scan<const N: usize, const L: usize>(
             }
         }
         let first = |i: usize, value: f32| {
-            b * BLOCK
-                + block
-                    .iter()
-                    .position(|p| project(i, p) == value)
-                    .unwrap_or(0)
+            b * BLOCK + block.iter().position(|p| project(i, p) == value).unwrap_or(0)
         };
         for i in 0..N {
             if block_lo[i] < lo[i] {
@@ -208,28 +202,23 @@ struct Best {
 impl Best {
     /// The three axis triples of a triangle: each edge, the normal, and their
     /// cross product.
-    fn triangle<I: Iterator<Item = DVec3> + Clone>(
-        &mut self,
-        points: I,
-        a: DVec3,
-        b: DVec3,
-        c: DVec3,
-    ) {
+    fn triangle(&mut self, points: &[DVec3], a: DVec3, b: DVec3, c: DVec3) {
         let Some(n) = (b - a).cross(c - a).try_normalize() else {
             return;
         };
         for edge in [b - a, c - b, a - c] {
-            self.consider(points.clone(), basis(n, edge));
+            self.consider(points, basis(n, edge));
         }
     }
 
     /// Keeps `axes` if their box on `points` is smaller than the best so far.
-    fn consider<I: Iterator<Item = DVec3>>(&mut self, points: I, axes: DMat3) {
+    fn consider(&mut self, points: &[DVec3], axes: DMat3) {
         let at = axes.transpose();
-        let (lo, hi) = points.fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), p| {
-            let k = at * p;
-            (lo.min(k), hi.max(k))
-        });
+        let (lo, hi) =
+            points.iter().fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &p| {
+                let k = at * p;
+                (lo.min(k), hi.max(k))
+            });
         let rank = rank(hi - lo);
         if rank < self.rank {
             *self = Best { axes, rank };
@@ -241,9 +230,7 @@ impl Best {
 fn farthest<I: Iterator<Item = DVec3>>(points: I, key: impl Fn(DVec3) -> f64) -> DVec3 {
     points
         .map(|p| (key(p), p))
-        .fold((f64::NEG_INFINITY, DVec3::ZERO), |best, c| {
-            if c.0 > best.0 { c } else { best }
-        })
+        .fold((f64::NEG_INFINITY, DVec3::ZERO), |best, c| if c.0 > best.0 { c } else { best })
         .1
 }
 
@@ -253,10 +240,6 @@ fn farthest<I: Iterator<Item = DVec3>>(points: I, key: impl Fn(DVec3) -> f64) ->
 /// a flat box behind another.
 fn rank(l: DVec3) -> (f64, f64) {
     let area = l.x * l.y + l.y * l.z + l.z * l.x;
-    let volume = if l.min_element() <= FLAT_BOX * l.max_element() {
-        0.0
-    } else {
-        l.x * l.y * l.z
-    };
+    let volume = if l.min_element() <= FLAT_BOX * l.max_element() { 0.0 } else { l.x * l.y * l.z };
     (volume, area)
 }

@@ -21,13 +21,10 @@ const MAX_SWEEPS: usize = 32;
 /// Only the upper triangle of `m` is read.
 pub(crate) fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
     // Scale to unit size so that squares of entries neither overflow nor vanish.
-    let scale = [
-        m.x_axis.abs().max_element(),
-        m.y_axis.abs().max_element(),
-        m.z_axis.abs().max_element(),
-    ]
-    .into_iter()
-    .fold(0.0, f64::max);
+    let scale =
+        [m.x_axis.abs().max_element(), m.y_axis.abs().max_element(), m.z_axis.abs().max_element()]
+            .into_iter()
+            .fold(0.0, f64::max);
     if !(scale > 0.0 && scale.is_finite()) {
         return (DVec3::ZERO, DMat3::IDENTITY);
     }
@@ -78,11 +75,9 @@ fn rotate(a: &mut [[f64; 3]; 3], v: &mut [[f64; 3]; 3], p: usize, q: usize) -> b
         row[p] = c * x - s * y;
         row[q] = s * x + c * y;
     }
-    for k in 0..3 {
-        let (x, y) = (a[p][k], a[q][k]);
-        a[p][k] = c * x - s * y;
-        a[q][k] = s * x + c * y;
-    }
+    let (row_p, row_q) = (a[p], a[q]);
+    a[p] = std::array::from_fn(|k| c * row_p[k] - s * row_q[k]);
+    a[q] = std::array::from_fn(|k| s * row_p[k] + c * row_q[k]);
     a[p][q] = 0.0;
     a[q][p] = 0.0;
     for row in v.iter_mut() {
@@ -137,10 +132,7 @@ mod tests {
             let mut want = l.to_array();
             want.sort_by(|a, b| b.total_cmp(a));
             for (got, want) in values.to_array().iter().zip(want) {
-                assert!(
-                    (got - want).abs() <= 1e-12 * l.max_element(),
-                    "{values} vs {l}"
-                );
+                assert!((got - want).abs() <= 1e-12 * l.max_element(), "{values} vs {l}");
             }
         }
     }

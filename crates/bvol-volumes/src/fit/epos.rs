@@ -80,11 +80,7 @@ impl<const N: usize> Lanes<N> {
                 }))
             })
         };
-        Lanes {
-            x: lane(0),
-            y: lane(1),
-            z: lane(2),
-        }
+        Lanes { x: lane(0), y: lane(1), z: lane(2) }
     }
 
     /// The projections of `p` on directions `4 g .. 4 g + 4`.
@@ -113,9 +109,6 @@ impl<const N: usize> Lanes<N> {
     /// by the same arithmetic, so the point is there; 0 would still be a valid
     /// index if it were not.
     fn find(&self, block: &[Vec3], k: usize, value: f32) -> usize {
-        block
-            .iter()
-            .position(|&p| self.project(k / 4, p)[k % 4] == value)
-            .unwrap_or(0)
+        block.iter().position(|&p| self.project(k / 4, p)[k % 4] == value).unwrap_or(0)
     }
 }

@@ -58,6 +58,13 @@ const LAST_STEP: f64 = 1e-6;
 /// A bound on function evaluations per descent.
 const MAX_EVALS: usize = 60;
 
+/// A bound on the work of the descents from several starts, in vertices,
+/// faces and edges visited.
+const DESCENT_WORK: usize = 1 << 18;
+
+/// The most starts for descent.
+const MAX_STARTS: usize = 8;
+
 /// Rounds of cycling the descent through the three axes of the best box.
 const MAX_ROUNDS: usize = 4;
 
@@ -68,22 +75,18 @@ pub(crate) fn min_volume(points: &[Vec3]) -> Obb {
         return dito::<13>(points);
     };
     let pca = hull_axes(&hull);
-    let baselines = [
-        Obb::on_basis(pca, points),
-        dito::<7>(points),
-        dito::<13>(points),
-    ];
+    let baselines = [Obb::on_basis(pca, points), dito::<7>(points), dito::<13>(points)];
     let axes = match hull.dimension() {
         3 => search(&hull, &baselines),
-        2 => flat_axes(&hull, hull.face_normal(0)),
+        // Flat: the plane's normal is the principal axis of least variance.
+        2 => flat_axes(&hull, pca.z_axis),
         // A segment or a point: the principal axis runs along it.
         _ => pca,
     };
     let searched = Obb::on_basis(axes, points);
-    baselines.into_iter().fold(
-        searched,
-        |best, b| if b.volume() < best.volume() { b } else { best },
-    )
+    baselines
+        .into_iter()
+        .fold(searched, |best, b| if b.volume() < best.volume() { b } else { best })
 }
 
 /// The box of a flat hull: its plane's normal, and the minimum-area rectangle
@@ -110,36 +113,80 @@ fn search(hull: &ConvexHull, baselines: &[Obb]) -> DMat3 {
         .collect();
     axes.extend(shape.largest_faces().map(|f| shape.normal(f)));
     edge_pairs(&shape, |n| axes.push(n));
+    // Unit axes only (the f32 baselines are unit to rounding; a degenerate
+    // face could have no normal).
+    let axes: Vec<DVec3> = axes.into_iter().filter_map(DVec3::try_normalize).collect();
     // Best-first by the lower bound, until it reaches the best box.
-    let mut order: Vec<(f64, usize)> = axes
-        .iter()
-        .enumerate()
-        .map(|(i, &n)| (eval.lower_bound(n), i))
-        .collect();
+    let mut order: Vec<(f64, usize)> =
+        axes.iter().enumerate().map(|(i, &n)| (eval.lower_bound(n), i)).collect();
     order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-    let mut best = Candidate {
-        volume: f64::INFINITY,
-        axes: DMat3::IDENTITY,
-    };
+    let mut best = Best::new(starts(&shape));
     for (bound, i) in order {
-        if bound >= best.volume {
+        if bound >= best.volume() {
             break;
         }
         let c = eval.fit(axes[i]);
-        if c.volume < best.volume {
-            best = c;
+        if c.volume < best.bound() {
+            best.offer(eval.verified(c));
         }
     }
-    polish(&mut eval, best).axes
+    // One descent from each start, then every axis of the best.
+    let descended = best.kept.iter().map(|&c| descend(&mut eval, c.axes.x_axis, c));
+    let start = descended.fold(None, |b: Option<Candidate>, c| Some(b.map_or(c, |b| b.min(c))));
+    start.map_or(DMat3::IDENTITY, |c| polish(&mut eval, c).axes)
+}
+
+/// How many candidates the local descent starts from: several on small hulls,
+/// where the volume has many local minima and a descent is cheap; one on
+/// large ones.
+fn starts(shape: &Shape) -> usize {
+    let per_descent = MAX_EVALS * (shape.vertices.len() + shape.areas.len() + shape.edges.len());
+    (DESCENT_WORK / per_descent).clamp(1, MAX_STARTS)
+}
+
+/// The best few candidates so far, least volume first, each a different box.
+struct Best {
+    kept: Vec<Candidate>,
+    room: usize,
+}
+
+impl Best {
+    fn new(room: usize) -> Self {
+        Best { kept: Vec::with_capacity(room + 1), room }
+    }
+
+    /// The least volume so far.
+    fn volume(&self) -> f64 {
+        self.kept.first().map_or(f64::INFINITY, |c| c.volume)
+    }
+
+    /// The volume a candidate must beat to be kept.
+    fn bound(&self) -> f64 {
+        if self.kept.len() < self.room { f64::INFINITY } else { self.kept[self.room - 1].volume }
+    }
+
+    /// Keeps a candidate that beats the bound, unless it is a box kept already
+    /// (the same first axis: found twice, from coplanar faces or edges).
+    fn offer(&mut self, c: Candidate) {
+        let same = |k: &Candidate| k.axes.x_axis.dot(c.axes.x_axis).abs() > 1.0 - 1e-12;
+        if c.volume >= self.bound() || self.kept.iter().any(same) {
+            return;
+        }
+        let at = self.kept.partition_point(|k| k.volume <= c.volume);
+        self.kept.insert(at, c);
+        self.kept.truncate(self.room);
+    }
 }
 
 /// A convex hull as the search reads it, in f64 about the mean of its
 /// vertices: unit outward face normals, face areas, and each edge with the two
 /// faces that meet there.
 struct Shape {
+    /// Vertices, relative to their mean.
     vertices: Vec<DVec3>,
     /// The normals' coordinates, apart so that passes over faces run on vectors.
     normals: [Vec<f64>; 3],
+    /// Face areas.
     areas: Vec<f64>,
     edges: Vec<Edge>,
 }
@@ -152,6 +199,7 @@ struct Edge {
 }
 
 impl Shape {
+    /// The shape of a solid hull.
     fn new(hull: &ConvexHull) -> Shape {
         let raw = hull.vertices();
         let origin = raw.iter().fold(DVec3::ZERO, |s, p| s + p.as_dvec3()) / raw.len() as f64;
@@ -180,8 +228,8 @@ impl Shape {
         }
     }
 
-    /// The faces whose normals are face candidates, largest first: all of
-    /// them unless that is more than `FACE_WORK`.
+    /// The faces whose normals are candidates: all of them, or the largest
+    /// when evaluating all would cost more than `FACE_WORK`.
     fn largest_faces(&self) -> impl Iterator<Item = usize> {
         let mut faces: Vec<usize> = (0..self.areas.len()).collect();
         let per_face = self.vertices.len() + self.areas.len() + self.edges.len();
@@ -219,10 +267,7 @@ fn edges(hull: &ConvexHull) -> Vec<Edge> {
     sides
         .chunk_by(|x, y| x.0 == y.0)
         .filter_map(|c| match c {
-            [(ends, f), (_, g)] => Some(Edge {
-                ends: *ends,
-                faces: [*f, *g],
-            }),
+            [(ends, f), (_, g)] => Some(Edge { ends: *ends, faces: [*f, *g] }),
             _ => None,
         })
         .collect()
@@ -233,6 +278,13 @@ fn edges(hull: &ConvexHull) -> Vec<Edge> {
 struct Candidate {
     volume: f64,
     axes: DMat3,
+}
+
+impl Candidate {
+    /// The one of less volume, `self` on ties.
+    fn min(self, other: Candidate) -> Candidate {
+        if other.volume < self.volume { other } else { self }
+    }
 }
 
 /// Evaluates `V(n)` on a shape, with scratch space reused between calls.
@@ -302,6 +354,22 @@ impl<'a> Evaluator<'a> {
         self.measure(n).0
     }
 
+    /// A candidate with its volume measured on the vertices: the true volume
+    /// of its box, whatever rounding did to the shadow or the rectangle. Every
+    /// box that the search keeps is measured so.
+    fn verified(&self, c: Candidate) -> Candidate {
+        let at = c.axes.transpose();
+        let (lo, hi) = self.shape.vertices.iter().fold(
+            (DVec3::INFINITY, DVec3::NEG_INFINITY),
+            |(lo, hi), &v| {
+                let k = at * v;
+                (lo.min(k), hi.max(k))
+            },
+        );
+        let l = hi - lo;
+        Candidate { volume: l.x * l.y * l.z, axes: c.axes }
+    }
+
     /// `V(n)` and its box, `n` unit: the height times the minimum-area
     /// rectangle around the hull's shadow.
     fn fit(&mut self, n: DVec3) -> Candidate {
@@ -326,10 +394,7 @@ impl<'a> Evaluator<'a> {
         }
         let rect = min_area_rect(&mut self.shadow, &mut self.ring);
         let axes = basis(n, t1 * rect.side.x + t2 * rect.side.y);
-        Candidate {
-            volume: height * rect.area,
-            axes,
-        }
+        Candidate { volume: height * rect.area, axes }
     }
 }
 
@@ -369,10 +434,11 @@ fn edge_pairs(shape: &Shape, mut visit: impl FnMut(DVec3)) {
             }
             let dxc = normal(e2.faces[1]).cross(normal(e2.faces[0])); // (-d) x (-c)
             let (adc, bdc) = (a.dot(dxc), b.dot(dxc));
-            if adc * bdc < 0.0 && -sc * bdc > 0.0 {
-                if let Some(n) = d1.cross(shape.edge_vector(e2)).try_normalize() {
-                    visit(n);
-                }
+            if adc * bdc < 0.0
+                && -sc * bdc > 0.0
+                && let Some(n) = d1.cross(shape.edge_vector(e2)).try_normalize()
+            {
+                visit(n);
             }
         }
     }
@@ -388,7 +454,7 @@ fn polish(eval: &mut Evaluator, start: Candidate) -> Candidate {
         for j in 0..3 {
             best = descend(eval, best.axes.col(j), best);
         }
-        if !(best.volume < before * (1.0 - 1e-9)) {
+        if best.volume >= before * (1.0 - 1e-9) {
             break;
         }
     }
@@ -396,18 +462,13 @@ fn polish(eval: &mut Evaluator, start: Candidate) -> Candidate {
 }
 
 /// Nelder-Mead on `V(n)` near `n0`, over the tangent plane: `n = normalize(n0 +
-/// x t1 + y t2)`. Returns the better of its result and `best`.
+/// x t1 + y t2)`. Returns the better of its result (measured) and `best`.
 fn descend(eval: &mut Evaluator, n0: DVec3, best: Candidate) -> Candidate {
     let (t1, t2) = n0.any_orthonormal_pair();
     let along = |x: DVec2| (n0 + t1 * x.x + t2 * x.y).normalize();
-    let x = nelder_mead(
-        |x| eval.fit(along(x)).volume,
-        FIRST_STEP,
-        LAST_STEP,
-        MAX_EVALS,
-    );
+    let x = nelder_mead(|x| eval.fit(along(x)).volume, FIRST_STEP, LAST_STEP, MAX_EVALS);
     let c = eval.fit(along(x));
-    if c.volume < best.volume { c } else { best }
+    best.min(eval.verified(c))
 }
 
 /// Minimises `f` over the plane from the origin by Nelder-Mead (Nelder & Mead
@@ -448,7 +509,5 @@ fn nelder_mead(mut f: impl FnMut(DVec2) -> f64, first: f64, last: f64, max_evals
             }
         }
     }
-    s.iter()
-        .min_by(|a, b| a.1.total_cmp(&b.1))
-        .map_or(DVec2::ZERO, |b| b.0)
+    s.iter().min_by(|a, b| a.1.total_cmp(&b.1)).map_or(DVec2::ZERO, |b| b.0)
 }

@@ -6,9 +6,9 @@
 
 use glam::DVec2;
 
-/// Distance from a hull edge, relative to the set's extent, below which a
-/// vertex counts as on it: far above the rounding of coordinates computed in
-/// f64 (about 1e-16 of the extent), far below anything a box's volume shows.
+/// Edge length, relative to the polygon's extent, below which an edge is
+/// rounding noise: far above the rounding of coordinates computed in f64
+/// (about 1e-16 of the extent), far below anything a box's volume shows.
 const SLIVER: f64 = 1e-12;
 
 /// A rectangle around a point set: its area and the unit direction of one of
@@ -30,40 +30,31 @@ pub(crate) fn min_area_rect(points: &mut [DVec2], hull: &mut Vec<DVec2>) -> Rect
     calipers(hull)
 }
 
-/// The convex hull, counter-clockwise (Andrew's monotone chain: the lower then
-/// the upper chain of the points sorted by x, then y). A vertex within a
-/// rounding-level distance (`SLIVER` of the set's extent) of the line through
-/// its neighbours is dropped: near-duplicates and near-collinear runs would
-/// give edges of meaningless direction and turns of either sign, and the
-/// calipers rely on a strictly convex polygon.
-pub(crate) fn convex_hull(points: &mut [DVec2], hull: &mut Vec<DVec2>) {
-    points.sort_unstable_by(|a, b| a.x.total_cmp(&b.x).then(a.y.total_cmp(&b.y)));
-    let (lo, hi) = points
-        .iter()
-        .fold((DVec2::INFINITY, DVec2::NEG_INFINITY), |(lo, hi), &p| {
-            (lo.min(p), hi.max(p))
-        });
-    let tolerance = SLIVER * (hi - lo).max_element();
+/// The convex hull, counter-clockwise, without repeated or collinear vertices
+/// (Andrew's monotone chain: the lower then the upper chain of the points
+/// sorted by x, then y).
+fn convex_hull(points: &mut [DVec2], hull: &mut Vec<DVec2>) {
+    // By value, so that -0.0 and 0.0 are one coordinate (total_cmp would split
+    // them, and a point between them in the order would break the chains).
+    let order = |a: f64, b: f64| a.partial_cmp(&b).unwrap_or(std::cmp::Ordering::Equal);
+    points.sort_unstable_by(|a, b| order(a.x, b.x).then(order(a.y, b.y)));
     hull.clear();
     for &p in points.iter() {
-        push_convex(hull, p, 2, tolerance);
+        push_convex(hull, p, 2);
     }
     let lower = hull.len() + 1;
     for &p in points.iter().rev().skip(1) {
-        push_convex(hull, p, lower, tolerance);
+        push_convex(hull, p, lower);
     }
     hull.pop(); // the first point again
 }
 
-/// Pushes `p` after removing the vertices that it would make non-convex: those
-/// not strictly left of the line from their predecessor to `p` by more than
-/// `tolerance`. Keeps at least `keep - 1` vertices.
-fn push_convex(hull: &mut Vec<DVec2>, p: DVec2, keep: usize, tolerance: f64) {
+/// Pushes `p` after removing the vertices that it would make non-convex (no
+/// strict left turn), keeping at least `keep - 1` of them.
+fn push_convex(hull: &mut Vec<DVec2>, p: DVec2, keep: usize) {
     while hull.len() >= keep {
         let (a, b) = (hull[hull.len() - 2], hull[hull.len() - 1]);
-        // b's distance from the line through a and p, squared, against the tolerance.
-        let cross = (p - a).perp_dot(b - a);
-        if cross < 0.0 && cross * cross > tolerance * tolerance * (p - a).length_squared() {
+        if (b - a).perp_dot(p - a) > 0.0 {
             break;
         }
         hull.pop();
@@ -75,7 +66,7 @@ fn push_convex(hull: &mut Vec<DVec2>, p: DVec2, keep: usize, tolerance: f64) {
 /// distinct vertices): for each edge, the rectangle flush with it, its other
 /// sides found by three calipers that only move forward (each is a local
 /// maximum of a unimodal sequence on a convex polygon).
-pub(crate) fn calipers(hull: &[DVec2]) -> Rect {
+fn calipers(hull: &[DVec2]) -> Rect {
     let k = hull.len();
     if k < 3 {
         let side = match hull {
@@ -84,46 +75,46 @@ pub(crate) fn calipers(hull: &[DVec2]) -> Rect {
         };
         return Rect { area: 0.0, side };
     }
+    // Edges shorter than this are rounding noise between near-duplicate
+    // vertices: their direction means nothing, and the calipers skip them.
+    let (lo, hi) = hull.iter().fold((hull[0], hull[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let noise = (SLIVER * (hi - lo).max_element()).powi(2);
     let next = |i: usize| if i + 1 == k { 0 } else { i + 1 };
     // Moves a caliper forward while `key` grows: strict, so it always stops.
-    // Calipers mostly move zero, one or two vertices per edge: those steps are
-    // selects, so that only the rare longer moves cost a mispredicted branch.
-    let step = |i: usize, key: DVec2| {
-        let j = next(i);
-        if hull[j].dot(key) > hull[i].dot(key) {
-            j
-        } else {
-            i
+    let climb = |mut i: usize, key: DVec2| {
+        while hull[next(i)].dot(key) > hull[i].dot(key) {
+            i = next(i);
         }
-    };
-    let climb = |i: usize, key: DVec2| {
-        let mut j = step(step(i, key), key);
-        loop {
-            let k = step(j, key);
-            if k == j {
-                return j;
-            }
-            j = k;
-        }
+        i
     };
     let (mut best_area, mut best_side) = (f64::INFINITY, DVec2::X);
-    let (mut right, mut top, mut left) = (0, 0, 0);
+    // Caliper positions, set on the first edge that is not noise.
+    let mut calipers: Option<(usize, usize, usize)> = None;
     for i in 0..k {
         // Unnormalised: the scale of the edge cancels in the area.
         let u = hull[next(i)] - hull[i];
+        if u.length_squared() <= noise {
+            continue;
+        }
         let w = u.perp(); // inward: the polygon lies to the left of its edges
-        right = climb(right, u);
-        top = climb(if i == 0 { right } else { top }, w);
-        left = climb(if i == 0 { top } else { left }, -u);
+        let (right, top, left) = match calipers {
+            Some((right, top, left)) => (climb(right, u), climb(top, w), climb(left, -u)),
+            None => {
+                let right = climb(i, u);
+                let top = climb(right, w);
+                (right, top, climb(top, -u))
+            }
+        };
+        calipers = Some((right, top, left));
         let area =
             (hull[right] - hull[left]).dot(u) * (hull[top] - hull[i]).dot(w) / u.length_squared();
         if area < best_area {
             (best_area, best_side) = (area, u);
         }
     }
-    Rect {
-        area: best_area,
-        side: best_side.normalize(),
+    match calipers {
+        Some(_) => Rect { area: best_area, side: best_side.normalize() },
+        None => Rect { area: 0.0, side: DVec2::X }, // every vertex the same, to rounding
     }
 }
 

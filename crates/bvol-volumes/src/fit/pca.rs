@@ -60,9 +60,7 @@ pub(crate) fn hull_axes(hull: &ConvexHull) -> DMat3 {
 
 /// The principal axes of a point set's covariance, about its mean.
 fn points_axes<I: Iterator<Item = DVec3> + Clone>(points: I) -> DMat3 {
-    let (sum, n) = points
-        .clone()
-        .fold((DVec3::ZERO, 0.0), |(s, n), p| (s + p, n + 1.0));
+    let (sum, n) = points.clone().fold((DVec3::ZERO, 0.0), |(s, n), p| (s + p, n + 1.0));
     let mean = sum / n;
     let cov = points.fold(DMat3::ZERO, |c, p| c + outer(p - mean, p - mean));
     principal_axes(cov)

@@ -9,9 +9,8 @@ use crate::Sphere;
 /// The sphere about the centre of the points' AABB; the radius comes from the
 /// containment pass (squared distances, one square root).
 pub(crate) fn aabb_center(points: &[Vec3]) -> Sphere {
-    let (lo, hi) = points.iter().fold((points[0], points[0]), |(lo, hi), &p| {
-        (lo.min(p), hi.max(p))
-    });
+    let (lo, hi) =
+        points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
     // Exact in f64: the sum of two f32 values halved.
     Sphere::enclosing((lo.as_dvec3() + hi.as_dvec3()) * 0.5, points)
 }
@@ -30,9 +29,7 @@ pub(crate) fn ritter(points: &[Vec3]) -> Sphere {
     let pairs =
         extremes::<3>(points).map(|[lo, hi]| (points[lo].as_dvec3(), points[hi].as_dvec3()));
     let span = |(a, b): (DVec3, DVec3)| (b - a).length_squared();
-    let (a, b) = pairs
-        .into_iter()
-        .fold(pairs[0], |w, p| if span(p) > span(w) { p } else { w });
+    let (a, b) = pairs.into_iter().fold(pairs[0], |w, p| if span(p) > span(w) { p } else { w });
     let center = grow((a + b) * 0.5, (b - a).length() * 0.5, points);
     Sphere::enclosing(center, points)
 }

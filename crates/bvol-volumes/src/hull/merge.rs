@@ -9,7 +9,8 @@
 //! face. A region whose loop is not convex within tolerance falls back to its
 //! triangles. Then a vertex left on only two faces, in line with its neighbours
 //! within tolerance, is taken out of both, so faces meet in straight edges
-//! (chains of such vertices thinned by Douglas-Peucker). One not in line marks
+//! (chains of such vertices thinned by Douglas-Peucker; a face that this would
+//! leave other than convex keeps all its vertices). One not in line marks
 //! two regions meeting along a bent chain, which only nearly coplanar faces can
 //! do: they fall back to their triangles, so every vertex left is a corner of
 //! at least three faces. The result keeps the exact hull's topology: every edge
@@ -99,11 +100,7 @@ fn polygons(
     eps: f64,
     merged: &mut [bool],
 ) -> (Polygons, Vec<u32>) {
-    let mut faces = Polygons {
-        loops: Vec::new(),
-        starts: vec![0],
-        planes: Vec::new(),
-    };
+    let mut faces = Polygons { loops: Vec::new(), starts: vec![0], planes: Vec::new() };
     let mut owners = Vec::new();
     let mut marks = vec![NONE; pos.len()];
     let mut ring = Vec::new();
@@ -167,10 +164,7 @@ impl Regions {
 /// (zero if degenerate) and offset through its centroid.
 fn plane(area_vector: DVec3, corners: [u32; 3], pos: &[DVec3]) -> (DVec3, f64) {
     let normal = area_vector.normalize_or_zero();
-    (
-        normal,
-        normal.dot(corners.map(|v| pos[v as usize]).iter().sum::<DVec3>()) / 3.0,
-    )
+    (normal, normal.dot(corners.map(|v| pos[v as usize]).iter().sum::<DVec3>()) / 3.0)
 }
 
 /// Groups the triangles into regions within `eps` of their seed's plane and
@@ -180,11 +174,8 @@ fn grow_regions(eps: f64, pos: &[DVec3], area_vectors: &[DVec3], hull: &Triangul
     let (corners, adjacent) = (&hull.corners, &hull.adjacent);
     let areas: Vec<f64> = area_vectors.iter().map(|a| a.length()).collect();
     let mut order: Vec<u32> = (0..corners.len() as u32).collect();
-    order.sort_unstable_by(|&x, &y| {
-        areas[y as usize]
-            .total_cmp(&areas[x as usize])
-            .then(x.cmp(&y))
-    });
+    order
+        .sort_unstable_by(|&x, &y| areas[y as usize].total_cmp(&areas[x as usize]).then(x.cmp(&y)));
 
     let mut of = vec![NONE; corners.len()];
     let mut marks = vec![NONE; pos.len()];
@@ -213,10 +204,7 @@ fn grow_regions(eps: f64, pos: &[DVec3], area_vectors: &[DVec3], hull: &Triangul
                     continue;
                 }
                 let (x, y) = (corners[t][e], corners[t][(e + 1) % 3]);
-                let w = corners[u]
-                    .into_iter()
-                    .find(|&v| v != x && v != y)
-                    .unwrap_or(x);
+                let w = corners[u].into_iter().find(|&v| v != x && v != y).unwrap_or(x);
                 // Near the plane, and facing its way: a region folding over
                 // itself (round the tip of a needle) would hide a vertex.
                 if (normal.dot(pos[w as usize]) - offset).abs() > eps
@@ -239,12 +227,7 @@ fn grow_regions(eps: f64, pos: &[DVec3], area_vectors: &[DVec3], hull: &Triangul
         starts.push(members.len());
         planes.push((normal, offset));
     }
-    Regions {
-        of,
-        members,
-        starts,
-        planes,
-    }
+    Regions { of, members, starts, planes }
 }
 
 /// Walks the boundary of region `r` (triangles `tris`) into `ring`, turning
@@ -260,15 +243,11 @@ fn boundary_loop(
     ring.clear();
     let (corners, adjacent) = (&hull.corners, &hull.adjacent);
     let outside = |t: usize, e: usize| of[adjacent[t][e] as usize] != r;
-    let boundary = tris
+    let boundary = tris.iter().map(|&t| (0..3).filter(|&e| outside(t as usize, e)).count()).sum();
+    let Some(start) = tris
         .iter()
-        .map(|&t| (0..3).filter(|&e| outside(t as usize, e)).count())
-        .sum();
-    let Some(start) = tris.iter().find_map(|&t| {
-        (0..3)
-            .find(|&e| outside(t as usize, e))
-            .map(|e| (t as usize, e))
-    }) else {
+        .find_map(|&t| (0..3).find(|&e| outside(t as usize, e)).map(|e| (t as usize, e)))
+    else {
         return false;
     };
     let (mut t, mut e) = start;
@@ -279,10 +258,7 @@ fn boundary_loop(
         let mut turns = 0;
         while !outside(t, e) {
             let u = adjacent[t][e] as usize;
-            let back = adjacent[u]
-                .iter()
-                .position(|&x| x as usize == t)
-                .unwrap_or(0);
+            let back = adjacent[u].iter().position(|&x| x as usize == t).unwrap_or(0);
             (t, e) = (u, (back + 1) % 3);
             turns += 1;
             if turns > tris.len() {
@@ -300,14 +276,14 @@ fn boundary_loop(
 
 /// Whether no vertex repeats in `ring` (`marks` holds a per-vertex stamp; `r` is fresh).
 fn is_simple(ring: &[u32], marks: &mut [u32], r: u32) -> bool {
-    ring.iter()
-        .all(|&v| std::mem::replace(&mut marks[v as usize], r) != r)
+    ring.iter().all(|&v| std::mem::replace(&mut marks[v as usize], r) != r)
 }
 
 /// Whether the loop is convex within `eps` about `normal`: seen along the
 /// normal, it visits the corners of its own convex hull in order, counter-
-/// clockwise, and every other vertex lies within `eps` of the hull edge it
-/// falls between. (A test of each turn alone would let small dents add up.)
+/// clockwise, and the vertices between two corners go forward along the hull
+/// edge joining them, within `eps` of it. (A test of each turn alone would let
+/// small dents add up, and a thin loop double back on itself.)
 fn is_convex(ring: &[u32], pos: &[DVec3], normal: DVec3, eps: f64) -> bool {
     let (u, v) = normal.any_orthonormal_pair();
     let flat = |k: usize| {
@@ -321,20 +297,29 @@ fn is_convex(ring: &[u32], pos: &[DVec3], normal: DVec3, eps: f64) -> bool {
     if n < 3 || corners.windows(2).any(|w| w[0] >= w[1]) {
         return false;
     }
-    // Ring positions from each corner to the next, cyclically.
+    // Ring positions from each corner to the next, cyclically; along the edge
+    // (its unit direction), then inward from it.
     let m = ring.len();
     (0..n).all(|i| {
         let (a, b) = (corners[i] as usize, corners[(i + 1) % n] as usize);
         let (pa, pb) = (flat(a), flat(b));
+        let along = (pb - pa).normalize_or_zero();
         let end = if b > a { b } else { b + m };
-        (a + 1..end).all(|k| (pb - pa).perp_dot(flat(k % m) - pa) <= eps * pa.distance(pb))
+        let mut last = 0.0;
+        (a + 1..=end).all(|k| {
+            let d = flat(k % m) - pa;
+            let t = along.dot(d);
+            let ok = t >= last - eps && along.perp_dot(d) <= eps;
+            last = t;
+            ok
+        })
     })
 }
 
 /// Takes out of the faces every vertex that lies on exactly two faces and within
 /// `eps` of the straight edge that replaces its chain; both faces lose it, so the
-/// faces stay consistent. A face that would keep fewer than 3 vertices keeps all.
-/// Returns which vertices stay on only two faces: the bends.
+/// faces stay consistent. A face that would no longer be a convex polygon keeps
+/// all its vertices. Returns which vertices stay on only two faces: the bends.
 fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) -> Vec<bool> {
     let mut count = vec![0u32; pos.len()];
     for &v in &faces.loops {
@@ -371,23 +356,27 @@ fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) -> Vec<bo
             }
         }
     }
-    // Keep every face a polygon: restore the vertices of those left too small
-    // (restoring only adds vertices to the others, so one pass does).
-    let small: Vec<usize> = (0..faces.len())
-        .filter(|&f| {
-            faces
-                .face(f)
-                .iter()
-                .filter(|&&v| !removed[v as usize])
-                .count()
-                < 3
-        })
-        .collect();
-    for f in small {
-        faces
-            .face(f)
-            .iter()
-            .for_each(|&v| removed[v as usize] = false);
+    // A face that lost vertices must still be a convex polygon facing its
+    // normal (a face thinner than the tolerance could fold): restore all the
+    // vertices of one that is not, until none is; restoring only gives back
+    // vertices, so this ends.
+    let mut ring = Vec::new();
+    loop {
+        let spoiled: Vec<usize> = (0..faces.len())
+            .filter(|&f| {
+                let face = faces.face(f);
+                ring.clear();
+                ring.extend(face.iter().copied().filter(|&v| !removed[v as usize]));
+                ring.len() < face.len()
+                    && (ring.len() < 3 || !is_convex(&ring, pos, faces.planes[f].0, eps))
+            })
+            .collect();
+        if spoiled.is_empty() {
+            break;
+        }
+        for f in spoiled {
+            faces.face(f).iter().for_each(|&v| removed[v as usize] = false);
+        }
     }
     let mut kept = Polygons {
         loops: Vec::with_capacity(faces.loops.len()),
@@ -395,17 +384,8 @@ fn remove_edge_vertices(faces: &mut Polygons, pos: &[DVec3], eps: f64) -> Vec<bo
         planes: Vec::new(),
     };
     for f in 0..faces.len() {
-        kept.push(
-            faces
-                .face(f)
-                .iter()
-                .copied()
-                .filter(|&v| !removed[v as usize]),
-            faces.planes[f],
-        );
+        kept.push(faces.face(f).iter().copied().filter(|&v| !removed[v as usize]), faces.planes[f]);
     }
     *faces = kept;
-    (0..pos.len())
-        .map(|v| count[v] == 2 && !removed[v])
-        .collect()
+    (0..pos.len()).map(|v| count[v] == 2 && !removed[v]).collect()
 }

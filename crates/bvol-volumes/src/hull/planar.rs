@@ -42,10 +42,7 @@ pub(super) fn polygon(frame: &Frame, normal: DVec3, axis: DVec3) -> Vec<u32> {
     let mut keep = vec![true; pos.len()];
     douglas_peucker(&pos[..=other_end], frame.eps, &mut keep[..=other_end]);
     douglas_peucker(&pos[other_end..], frame.eps, &mut keep[other_end..]);
-    ring.into_iter()
-        .zip(keep)
-        .filter_map(|(i, k)| k.then_some(i))
-        .collect()
+    ring.into_iter().zip(keep).filter_map(|(i, k)| k.then_some(i)).collect()
 }
 
 /// The corners of the 2-D convex hull of labelled points, strictly convex,
@@ -55,10 +52,7 @@ pub(super) fn convex_chain(mut flat: Vec<(DVec2, u32)>) -> Vec<u32> {
         return flat.into_iter().map(|(_, i)| i).collect();
     }
     flat.sort_unstable_by(|a, b| {
-        a.0.x
-            .total_cmp(&b.0.x)
-            .then(a.0.y.total_cmp(&b.0.y))
-            .then(a.1.cmp(&b.1))
+        a.0.x.total_cmp(&b.0.x).then(a.0.y.total_cmp(&b.0.y)).then(a.1.cmp(&b.1))
     });
     let mut hull: Vec<(DVec2, u32)> = Vec::new();
     // Lower chain left to right, then the upper chain right to left, never
@@ -95,9 +89,8 @@ mod tests {
 
     #[test]
     fn square_with_inner_and_edge_points_keeps_its_corners_counter_clockwise() {
-        let points: Vec<Vec3> = (0..5)
-            .flat_map(|i| (0..5).map(move |j| Vec3::new(i as f32, j as f32, 2.0)))
-            .collect();
+        let points: Vec<Vec3> =
+            (0..5).flat_map(|i| (0..5).map(move |j| Vec3::new(i as f32, j as f32, 2.0))).collect();
         let frame = Frame::new(&points);
         let ring = polygon(&frame, DVec3::Z, DVec3::X);
         let corners: Vec<Vec3> = ring.iter().map(|&i| points[i as usize]).collect();
@@ -114,9 +107,7 @@ mod tests {
 
     #[test]
     fn collinear_points_give_two_ends() {
-        let points: Vec<Vec3> = (0..7)
-            .map(|i| Vec3::new(i as f32, 2.0 * i as f32, 0.0))
-            .collect();
+        let points: Vec<Vec3> = (0..7).map(|i| Vec3::new(i as f32, 2.0 * i as f32, 0.0)).collect();
         let frame = Frame::new(&points);
         let axis = DVec3::new(1.0, 2.0, 0.0).normalize();
         assert_eq!(polygon(&frame, DVec3::Z, axis).len(), 2);

@@ -112,10 +112,7 @@ struct Expansion {
 
 impl Default for Expansion {
     fn default() -> Self {
-        Expansion {
-            parts: [0.0; MAX_TERMS],
-            len: 0,
-        }
+        Expansion { parts: [0.0; MAX_TERMS], len: 0 }
     }
 }
 
@@ -141,11 +138,7 @@ impl Expansion {
 
     /// The largest part: it carries the sign of the whole sum (0 for an empty sum).
     fn most_significant(&self) -> f64 {
-        if self.len == 0 {
-            0.0
-        } else {
-            self.parts[self.len - 1]
-        }
+        if self.len == 0 { 0.0 } else { self.parts[self.len - 1] }
     }
 
     /// The sum, rounded: the parts added smallest first (Shewchuk's `estimate`).
@@ -235,10 +228,7 @@ mod tests {
         let want = a.cross(b) * 0.5;
         let got = cross_exact(a, b, c);
         for (g, w) in got.to_array().into_iter().zip(want.to_array()) {
-            assert!(
-                (g - w).abs() <= 2.0 * f64::EPSILON * w.abs(),
-                "{got} vs {want}"
-            );
+            assert!((g - w).abs() <= 2.0 * f64::EPSILON * w.abs(), "{got} vs {want}");
         }
         let plain = (b - a).cross(c - a);
         assert!((plain - want).length() > 1e3 * f64::EPSILON * want.length());

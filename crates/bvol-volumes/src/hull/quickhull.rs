@@ -107,12 +107,7 @@ impl<'a> Builder<'a> {
     /// farthest outside of.
     fn new(frame: &'a Frame<'a>, simplex: [u32; 4]) -> Option<Self> {
         let [a, mut b, mut c, d] = simplex;
-        let sign = orient3d(
-            frame.exact(a),
-            frame.exact(b),
-            frame.exact(c),
-            frame.exact(d),
-        );
+        let sign = orient3d(frame.exact(a), frame.exact(b), frame.exact(c), frame.exact(d));
         if sign == 0.0 {
             return None;
         }
@@ -142,12 +137,8 @@ impl<'a> Builder<'a> {
             let t = builder.alloc(v);
             builder.tris[t as usize].adj = adj;
         }
-        builder.orphans = frame
-            .points
-            .iter()
-            .zip(0..)
-            .map(|(&point, index)| Outside { point, index })
-            .collect();
+        builder.orphans =
+            frame.points.iter().zip(0..).map(|(&point, index)| Outside { point, index }).collect();
         builder.cone = vec![0, 1, 2, 3];
         builder.assign_orphans();
         Some(builder)
@@ -193,8 +184,7 @@ impl<'a> Builder<'a> {
         self.orphans.clear();
         for &f in &self.visible {
             let list = &mut self.conflicts[f as usize];
-            self.orphans
-                .extend(list.iter().copied().filter(|p| p.index != eye));
+            self.orphans.extend(list.iter().copied().filter(|p| p.index != eye));
             list.clear();
             self.tris[f as usize].alive = false;
             self.free.push(f);
@@ -253,11 +243,7 @@ impl<'a> Builder<'a> {
                 let back = seen.adj.iter().position(|&x| x == t).unwrap_or(0);
                 self.walk.push((u, (back + 1) % 3, 2));
             } else {
-                self.horizon.push(HorizonEdge {
-                    a: tri.v[e],
-                    b: tri.v[(e + 1) % 3],
-                    hidden: u,
-                });
+                self.horizon.push(HorizonEdge { a: tri.v[e], b: tri.v[(e + 1) % 3], hidden: u });
             }
         }
         if self.horizon_is_loop() {
@@ -356,15 +342,8 @@ impl<'a> Builder<'a> {
         vertices.dedup();
         let local = |i: u32| vertices.binary_search(&i).unwrap_or(0) as u32;
         let corners = live.iter().map(|t| t.v.map(local)).collect();
-        let adjacent = live
-            .iter()
-            .map(|t| t.adj.map(|u| index[u as usize]))
-            .collect();
-        Triangulation {
-            vertices,
-            corners,
-            adjacent,
-        }
+        let adjacent = live.iter().map(|t| t.adj.map(|u| index[u as usize])).collect();
+        Triangulation { vertices, corners, adjacent }
     }
 }
 
@@ -403,10 +382,7 @@ mod tests {
         let frame = Frame::new(&points);
         let hull = triangulate(&frame, [0, 3, 12, 63]).unwrap();
         assert_exact_hull(&frame, &hull);
-        assert!(
-            triangulate(&frame, [0, 1, 2, 3]).is_none(),
-            "a flat simplex is refused"
-        );
+        assert!(triangulate(&frame, [0, 1, 2, 3]).is_none(), "a flat simplex is refused");
     }
 
     #[test]
@@ -420,9 +396,8 @@ mod tests {
             z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
             ((z ^ (z >> 31)) >> 40) as f32 / (1u64 << 23) as f32 - 1.0
         };
-        let points: Vec<Vec3> = (0..500)
-            .map(|_| Vec3::new(next(), next(), next()).normalize())
-            .collect();
+        let points: Vec<Vec3> =
+            (0..500).map(|_| Vec3::new(next(), next(), next()).normalize()).collect();
         let frame = Frame::new(&points);
         let hull = triangulate(&frame, [0, 1, 2, 3]).unwrap();
         assert_exact_hull(&frame, &hull);

@@ -19,12 +19,7 @@ pub fn mesh(name: &str) -> Vec<Vec3> {
         .unwrap_or_else(|e| panic!("{}: {e}", path.display()));
     models
         .iter()
-        .flat_map(|m| {
-            m.mesh
-                .positions
-                .chunks_exact(3)
-                .map(|c| Vec3::new(c[0], c[1], c[2]))
-        })
+        .flat_map(|m| m.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])))
         .collect()
 }
 

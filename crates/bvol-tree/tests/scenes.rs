@@ -1,0 +1,135 @@
+//! Larger moving scenes (thousands of leaves, many pair-search tasks and
+//! build clusters) against brute force, frame after frame, on both update
+//! paths; and the same answers, in the same order, on 1, 2 and 4 threads.
+
+mod common;
+
+use bvol_tree::{Config, PairSet, Tree};
+use bvol_volumes::{Aabb, Sphere};
+use common::{Mix, TestBound, brute_cross, brute_pairs};
+use glam::Vec3;
+
+/// Boxes or spheres of size about 1 moving in a cube sized for about one
+/// pair per body; each frame `moving` percent move a little and `jumping`
+/// percent jump anywhere.
+struct Scene<B> {
+    bounds: Vec<B>,
+    world: f32,
+    rng: Mix,
+}
+
+impl<B: TestBound> Scene<B> {
+    fn new(n: usize, seed: u64) -> Self {
+        let world = (n as f32).cbrt() * 2.5;
+        let mut rng = Mix(seed);
+        let bounds = (0..n).map(|_| Self::random(&mut rng, world)).collect();
+        Scene { bounds, world, rng }
+    }
+
+    fn random(rng: &mut Mix, world: f32) -> B {
+        let p = Vec3::new(rng.range(0.0, world), rng.range(0.0, world), rng.range(0.0, world));
+        let s = Vec3::new(rng.range(0.5, 2.0), rng.range(0.5, 2.0), rng.range(0.5, 2.0));
+        B::make(p, s)
+    }
+
+    fn step(&mut self, moving: u64, jumping: u64) {
+        for b in &mut self.bounds {
+            let roll = self.rng.below(100);
+            if roll < jumping {
+                *b = Self::random(&mut self.rng, self.world);
+            } else if roll < jumping + moving {
+                let d = Vec3::new(self.rng.range(-0.3, 0.3), self.rng.range(-0.3, 0.3), self.rng.range(-0.3, 0.3));
+                *b = b.shifted(d);
+            }
+        }
+    }
+
+    fn leaves(&self) -> Vec<(u32, B)> {
+        self.bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)).collect()
+    }
+}
+
+/// Runs `frames` frames alternating heavy and light motion, checking the tree
+/// and the pair set against brute force after every frame.
+fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
+    let mut scene = Scene::<B>::new(n, 7);
+    let mut tree = Tree::with_config(config);
+    let mut set = PairSet::new();
+    let mut last: Vec<(u32, u32)> = Vec::new();
+    for f in 0..frames {
+        // Heavy frames take the refit path, light ones the per-leaf path.
+        let (moving, jumping) = [(100, 1), (100, 0), (3, 1), (1, 0), (40, 0)][f % 5];
+        scene.step(moving, jumping);
+        tree.update(&scene.bounds).unwrap();
+        tree.validate().unwrap();
+        let want = brute_pairs(&scene.leaves());
+        let mut got = tree.pairs();
+        got.sort_unstable();
+        assert_eq!(got, want, "frame {f}");
+        set.update(&mut tree);
+        assert_eq!(set.pairs(), &want[..], "frame {f}");
+        let began: Vec<_> = want.iter().filter(|p| last.binary_search(p).is_err()).copied().collect();
+        let ended: Vec<_> = last.iter().filter(|p| want.binary_search(p).is_err()).copied().collect();
+        assert_eq!(set.began(), &began[..], "frame {f}");
+        assert_eq!(set.ended(), &ended[..], "frame {f}");
+        last = want;
+    }
+}
+
+#[test]
+fn aabb_scene_matches_brute_force() {
+    against_brute_force::<Aabb>(3000, 15, Config::default());
+}
+
+#[test]
+fn sphere_scene_matches_brute_force() {
+    against_brute_force::<Sphere>(1500, 10, Config::default());
+}
+
+#[test]
+fn scene_with_small_budget_and_eager_rebuilds_matches_brute_force() {
+    let config = Config { rebuild_budget: 64, drift: 0.0, ..Config::default() };
+    against_brute_force::<Aabb>(2000, 10, config);
+}
+
+#[test]
+fn dynamic_against_static_matches_brute_force() {
+    let mut moving = Scene::<Aabb>::new(2000, 3);
+    let fixed = Scene::<Aabb>::new(1500, 4);
+    let stat = Tree::from_bounds(&fixed.bounds).unwrap();
+    let mut tree = Tree::new();
+    for _ in 0..4 {
+        moving.step(100, 2);
+        tree.update(&moving.bounds).unwrap();
+        let mut got = tree.pairs_with(&stat);
+        got.sort_unstable();
+        assert_eq!(got, brute_cross(&moving.leaves(), &fixed.leaves()));
+    }
+}
+
+/// The same sequence on pools of 1, 2 and 4 threads gives identical lists.
+#[test]
+fn results_do_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut scene = Scene::<Aabb>::new(6000, 11);
+            let stat = Tree::from_bounds(&Scene::<Aabb>::new(3000, 12).bounds).unwrap();
+            let mut tree = Tree::new();
+            let mut set = PairSet::new();
+            let mut seen = Vec::new();
+            for f in 0..6 {
+                let (moving, jumping) = [(100, 1), (2, 0)][f % 2];
+                scene.step(moving, jumping);
+                tree.update(&scene.bounds).unwrap();
+                set.update(&mut tree);
+                seen.push((tree.pairs(), tree.pairs_with(&stat), set.pairs().to_vec(), set.began().to_vec()));
+            }
+            seen
+        })
+    };
+    let one = run(1);
+    assert!(one.iter().all(|f| !f.0.is_empty() && !f.1.is_empty()));
+    assert_eq!(run(2), one);
+    assert_eq!(run(4), one);
+}
