@@ -152,7 +152,8 @@ fn check_agreement(kind: SceneKind, n: usize) {
 }
 
 fn pairs(c: &mut Criterion) {
-    let n: usize = std::env::var("BVOL_BENCH_N").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
+    let n: usize =
+        std::env::var("BVOL_BENCH_N").ok().and_then(|v| v.parse().ok()).unwrap_or(100_000);
     for kind in SceneKind::ALL {
         check_agreement(kind, n.min(20_000));
         let mut group = c.benchmark_group(format!("pairs/{kind}"));

@@ -16,7 +16,12 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     let obb = Obb::fit(&points, ObbMethod::MinVolume)?;
     println!("{path}: {} vertices", points.len());
     println!("sphere: centre {}, radius {}", sphere.center, sphere.radius);
-    println!("obb: centre {}, half extents {}, volume {}", obb.center, obb.half_extents, obb.volume());
+    println!(
+        "obb: centre {}, half extents {}, volume {}",
+        obb.center,
+        obb.half_extents,
+        obb.volume()
+    );
 
     // Two bodies with the same shape, side by side: cheapest test first.
     let a = Pose::new(Vec3::ZERO, Quat::IDENTITY);

@@ -94,7 +94,6 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Vec<Mesh>, MeshError> {
 fn mesh_of(model: tobj::Model) -> Mesh {
     let positions =
         model.mesh.positions.chunks_exact(3).map(|c| Vec3::new(c[0], c[1], c[2])).collect();
-    let triangles =
-        model.mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
+    let triangles = model.mesh.indices.chunks_exact(3).map(|t| [t[0], t[1], t[2]]).collect();
     Mesh { name: model.name, positions, triangles }
 }

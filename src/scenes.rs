@@ -172,7 +172,8 @@ impl Scene {
         }
         self.frame += 1;
         self.boxes.clear();
-        self.boxes.extend(self.centres.iter().zip(&self.halves).map(|(&c, &h)| Aabb::new(c - h, c + h)));
+        self.boxes
+            .extend(self.centres.iter().zip(&self.halves).map(|(&c, &h)| Aabb::new(c - h, c + h)));
         &self.boxes
     }
 

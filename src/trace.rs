@@ -181,7 +181,10 @@ impl BoxTrace {
             return Err(TraceError::BadMagic);
         }
         if bytes.len() < HEADER {
-            return Err(TraceError::Truncated { expected: HEADER as u64, actual: bytes.len() as u64 });
+            return Err(TraceError::Truncated {
+                expected: HEADER as u64,
+                actual: bytes.len() as u64,
+            });
         }
         if word(4) != VERSION {
             return Err(TraceError::UnknownVersion(word(4)));
@@ -196,7 +199,8 @@ impl BoxTrace {
             return Err(TraceError::TrailingBytes { expected, actual });
         }
         let float = |i: usize| f32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
-        let mut trace = BoxTrace { n: n as usize, boxes: Vec::with_capacity((n * frames) as usize) };
+        let mut trace =
+            BoxTrace { n: n as usize, boxes: Vec::with_capacity((n * frames) as usize) };
         for k in 0..(n * frames) as usize {
             let at = HEADER + k * BOX_BYTES;
             let b = Aabb::new(
@@ -252,7 +256,10 @@ impl<W: Write> TraceWriter<W> {
             return Err(TraceError::WrongCount { expected: self.n, actual: boxes.len() });
         }
         if self.written == self.frames {
-            return Err(TraceError::FrameCount { announced: self.frames, written: self.written + 1 });
+            return Err(TraceError::FrameCount {
+                announced: self.frames,
+                written: self.written + 1,
+            });
         }
         let mut bytes = Vec::with_capacity(boxes.len() * BOX_BYTES);
         for b in boxes {

@@ -54,7 +54,9 @@ fn json_bounds_hold_every_vertex() {
     let rows: Vec<Value> = serde_json::from_slice(&out.stdout).unwrap();
     let points: Vec<DVec3> =
         bvol::load_obj(&path).unwrap()[0].positions.iter().map(|p| p.as_dvec3()).collect();
-    let v3 = |v: &Value| DVec3::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap(), v[2].as_f64().unwrap());
+    let v3 = |v: &Value| {
+        DVec3::new(v[0].as_f64().unwrap(), v[1].as_f64().unwrap(), v[2].as_f64().unwrap())
+    };
     let kinds: Vec<&str> = rows.iter().map(|r| r["kind"].as_str().unwrap()).collect();
     for kind in ["sphere", "aabb", "obb", "kdop"] {
         assert!(kinds.contains(&kind), "no {kind} in {kinds:?}");

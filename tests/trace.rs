@@ -46,8 +46,16 @@ fn malformed_files_say_what_is_wrong() {
     assert!(matches!(with(&|b| b.truncate(2)), TraceError::BadMagic));
     assert!(matches!(with(&|b| b[4] = 2), TraceError::UnknownVersion(2)));
     assert!(matches!(with(&|b| b.truncate(10)), TraceError::Truncated { .. }));
-    assert!(matches!(with(&|b| { b.pop(); }), TraceError::Truncated { expected: 160, actual: 159 }));
-    assert!(matches!(with(&|b| b.push(0)), TraceError::TrailingBytes { expected: 160, actual: 161 }));
+    assert!(matches!(
+        with(&|b| {
+            b.pop();
+        }),
+        TraceError::Truncated { expected: 160, actual: 159 }
+    ));
+    assert!(matches!(
+        with(&|b| b.push(0)),
+        TraceError::TrailingBytes { expected: 160, actual: 161 }
+    ));
     // Frame 1, box 2: min.x above max.x, then a NaN.
     let at = 16 + 24 * (3 + 2);
     let e = with(&|b| b[at..at + 4].copy_from_slice(&1e9f32.to_le_bytes()));
@@ -60,7 +68,10 @@ fn malformed_files_say_what_is_wrong() {
     let mut t = BoxTrace::new(1);
     assert!(matches!(t.push_frame(&[]), Err(TraceError::WrongCount { expected: 1, actual: 0 })));
     let inverted = Aabb::new(Vec3::ONE, Vec3::ZERO);
-    assert!(matches!(t.push_frame(&[inverted]), Err(TraceError::MinAboveMax { frame: 0, index: 0 })));
+    assert!(matches!(
+        t.push_frame(&[inverted]),
+        Err(TraceError::MinAboveMax { frame: 0, index: 0 })
+    ));
     assert_eq!(t.frames(), 0);
 }
 
@@ -122,5 +133,8 @@ fn digest_of_a_trace_is_the_sum_of_its_frames() {
         all.extend(pairs);
     }
     assert_eq!(total, PairDigest::of_pairs(all));
-    assert_eq!(format!("{}", PairDigest { count: 3, h1: 0xab, h2: u64::MAX }), "3\t00000000000000ab\tffffffffffffffff");
+    assert_eq!(
+        format!("{}", PairDigest { count: 3, h1: 0xab, h2: u64::MAX }),
+        "3\t00000000000000ab\tffffffffffffffff"
+    );
 }

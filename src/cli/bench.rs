@@ -154,10 +154,13 @@ fn print(run: &Run, threads: usize, source: &str) {
         k if k % 2 == 1 => sorted[k / 2],
         k => 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]),
     };
-    let mean = if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
+    let mean =
+        if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
     let avg_pairs = run.pairs as f64 / run.frames as f64;
     let per_body = run.bytes as f64 / run.n.max(1) as f64;
-    println!("n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body");
+    println!(
+        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body"
+    );
     println!(
         "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}",
         run.n, run.frames, run.build_ms, run.digest

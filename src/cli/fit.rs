@@ -43,11 +43,25 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
         let (s, micros) = timed(|| Sphere::fit(points, m))?;
         let bound = json!({ "center": s.center.to_array(), "radius": s.radius });
         let radius = Some(s.radius as f64);
-        out.push(Fitted { kind: "sphere", method: m.to_string(), radius, volume: s.volume() as f64, micros, bound });
+        out.push(Fitted {
+            kind: "sphere",
+            method: m.to_string(),
+            radius,
+            volume: s.volume() as f64,
+            micros,
+            bound,
+        });
     }
     let (b, micros) = timed(|| Aabb::fit(points))?;
     let bound = json!({ "min": b.min.to_array(), "max": b.max.to_array() });
-    out.push(Fitted { kind: "aabb", method: "exact".into(), radius: None, volume: b.volume() as f64, micros, bound });
+    out.push(Fitted {
+        kind: "aabb",
+        method: "exact".into(),
+        radius: None,
+        volume: b.volume() as f64,
+        micros,
+        bound,
+    });
     for &m in ObbMethod::ALL {
         let (o, micros) = timed(|| Obb::fit(points, m))?;
         let bound = json!({
@@ -55,7 +69,14 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
             "axes": [o.axes.x_axis.to_array(), o.axes.y_axis.to_array(), o.axes.z_axis.to_array()],
             "half_extents": o.half_extents.to_array(),
         });
-        out.push(Fitted { kind: "obb", method: m.to_string(), radius: None, volume: o.volume() as f64, micros, bound });
+        out.push(Fitted {
+            kind: "obb",
+            method: m.to_string(),
+            radius: None,
+            volume: o.volume() as f64,
+            micros,
+            bound,
+        });
     }
     out.push(kdop::<3>(points)?);
     out.push(kdop::<7>(points)?);
@@ -123,7 +144,10 @@ fn to_json(fitted: &[Fitted]) -> Value {
 
 fn print_table(path: &Path, vertices: usize, fitted: &[Fitted]) {
     println!("{}: {vertices} vertices", path.display());
-    println!("{:<7} {:<11} {:>16} {:>16} {:>7} {:>11}", "kind", "method", "radius", "volume", "ratio", "micros");
+    println!(
+        "{:<7} {:<11} {:>16} {:>16} {:>7} {:>11}",
+        "kind", "method", "radius", "volume", "ratio", "micros"
+    );
     for f in fitted {
         let radius = f.radius.map_or(String::new(), |r| format!("{r:.6}"));
         println!(

@@ -78,11 +78,17 @@ impl Bound for Aabb {
     }
 
     fn check(&self) -> Result<(), BoundError> {
+        // One branch for the common case; frame updates check every bound.
+        if self.min.is_finite() & self.max.is_finite() & self.min.cmple(self.max).all() {
+            return Ok(());
+        }
         if !(self.min.is_finite() && self.max.is_finite()) {
             return Err(BoundError::NonFinite);
         }
         match (0..3).find(|&axis| self.min[axis] > self.max[axis]) {
-            Some(axis) => Err(BoundError::Inverted { axis, min: self.min[axis], max: self.max[axis] }),
+            Some(axis) => {
+                Err(BoundError::Inverted { axis, min: self.min[axis], max: self.max[axis] })
+            }
             None => Ok(()),
         }
     }

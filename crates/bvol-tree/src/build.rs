@@ -17,6 +17,10 @@ const BINS: usize = 16;
 /// input cannot make the recursion (or the tree) deeper than this plus
 /// log2(n).
 const SAH_DEPTH: u32 = 48;
+/// Ranges up to this long are split by an exact SAH sweep over the sorted
+/// centres: the few atoms are cheaper to sort than to bin, and most nodes of
+/// a tree are this small.
+const SWEEP: usize = 16;
 /// Ranges at least this long are built on two rayon tasks.
 const PARALLEL_MIN: usize = 4096;
 
@@ -117,6 +121,9 @@ fn split<B: Bound>(atoms: &mut [Atom<B>], depth: u32) -> usize {
         (lo.min(a.center), hi.max(a.center))
     });
     let axis = (hi - lo).max_position();
+    if n <= SWEEP {
+        return sweep(atoms, axis);
+    }
     let (min, extent) = (lo[axis], hi[axis] - lo[axis]);
     // Fewer bins for short ranges: the sweeps cost O(bins) per node, which
     // dominates the bottom levels of the tree when it is a fixed 16.
@@ -169,6 +176,43 @@ fn best_bin<B: Bound>(
     best.map(|(k, _)| k)
 }
 
+/// The exact SAH split of a few atoms (2 < n <= [`SWEEP`]): sorted by centre
+/// along `axis`, then every split position costed with prefix and suffix
+/// bounds. Returns the length of the first half.
+fn sweep<B: Bound>(atoms: &mut [Atom<B>], axis: usize) -> usize {
+    let n = atoms.len();
+    // Insertion sort: stable and quick for so few.
+    for i in 1..n {
+        let mut j = i;
+        while j > 0 && atoms[j - 1].center[axis] > atoms[j].center[axis] {
+            atoms.swap(j - 1, j);
+            j -= 1;
+        }
+    }
+    let mut right = [0.0f64; SWEEP];
+    let (mut acc, mut count) = (atoms[n - 1].bound.aabb(), atoms[n - 1].weight as f64);
+    for k in (1..n).rev() {
+        if k < n - 1 {
+            acc = acc.merge(&atoms[k].bound.aabb());
+            count += atoms[k].weight as f64;
+        }
+        right[k] = acc.cost() * count;
+    }
+    let (mut acc, mut count) = (atoms[0].bound.aabb(), 0.0);
+    let mut best = (1, f64::INFINITY);
+    for k in 1..n {
+        if k > 1 {
+            acc = acc.merge(&atoms[k - 1].bound.aabb());
+        }
+        count += atoms[k - 1].weight as f64;
+        let cost = acc.cost() * count + right[k];
+        if cost < best.1 {
+            best = (k, cost);
+        }
+    }
+    best.0
+}
+
 /// Moves the atoms for which `left` holds to the front (stable in neither
 /// half, but deterministic); returns how many there are.
 fn partition<B: Bound>(atoms: &mut [Atom<B>], left: impl Fn(&Atom<B>) -> bool) -> usize {
@@ -188,4 +232,3 @@ fn median<B: Bound>(atoms: &mut [Atom<B>], axis: usize) -> usize {
     atoms.select_nth_unstable_by(mid, |a, b| a.center[axis].total_cmp(&b.center[axis]));
     mid
 }
-

@@ -14,7 +14,6 @@
 
 use rayon::prelude::*;
 
-
 use crate::node::{Node, Ref};
 use crate::{Bound, Tree};
 
@@ -37,9 +36,6 @@ struct Visit {
 
 /// Both children of both nodes.
 const ALL: u8 = 0b1111;
-/// Child 0 of `x` against child 1 of `y`: with `x == y`, the two subtrees of
-/// one node.
-const SIBLINGS: u8 = 0b1001;
 
 /// A pair search over one tree (`a` and `b` the same nodes, pairs reported
 /// `(min, max)` and each once) or two (`(id in a, id in b)`).
@@ -63,14 +59,14 @@ impl<B: Bound> Tree<B> {
     pub fn pairs_into(&self, out: &mut Vec<(u32, u32)>) {
         out.clear();
         let search = Search { a: &self.nodes, b: &self.nodes, same: true };
-        let chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).collect();
+        // Last chunk first: in preorder a node's subtree follows it, so going
+        // backwards a node's two subtrees were searched just before it, and
+        // the search between them finds their nodes still in cache.
+        let chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).rev().collect();
         let parts: Vec<Vec<(u32, u32)>> = chunks
             .par_iter()
             .map_init(Walker::default, |walker, &start| {
-                let end = (start + CHUNK).min(self.nodes.len());
-                // Free nodes have no second child.
-                let used = (start..end).filter(|&x| self.nodes[x].child[1] != Ref::NONE);
-                walker.run(&search, used.map(|x| Visit { x: x as u32, y: x as u32, mask: SIBLINGS }));
+                walker.siblings(&search, start..(start + CHUNK).min(self.nodes.len()));
                 walker.take()
             })
             .collect();
@@ -110,7 +106,7 @@ impl<B: Bound> Tree<B> {
         let parts: Vec<Vec<(u32, u32)>> = visits
             .par_chunks(TASKS / 64)
             .map_init(Walker::default, |walker, visits| {
-                walker.run(&search, visits.iter().copied());
+                walker.run(&search, visits);
                 walker.take()
             })
             .collect();
@@ -179,16 +175,21 @@ struct Walker {
 }
 
 impl Walker {
-    /// Every pair under the given visits, appended to the output. The descent
-    /// is breadth-first: the visits of one level do not depend on each other,
-    /// so the processor overlaps their node loads and overlap tests, where a
-    /// depth-first stack chains every step on the one before.
-    fn run<B: Bound>(&mut self, s: &Search<B>, visits: impl Iterator<Item = Visit>) {
+    /// Every pair under the given visits, appended to the output.
+    fn run<B: Bound>(&mut self, s: &Search<B>, visits: &[Visit]) {
         self.now.len = 0;
-        for v in visits {
-            self.now.reserve(1);
+        self.now.reserve(visits.len());
+        for &v in visits {
             self.now.push_if(v, true);
         }
+        self.descend(s);
+    }
+
+    /// Runs the pending visits and every visit they lead to. The descent is
+    /// breadth-first: the visits of one level do not depend on each other,
+    /// so the processor overlaps their node loads and overlap tests, where a
+    /// depth-first stack chains every step on the one before.
+    fn descend<B: Bound>(&mut self, s: &Search<B>) {
         while self.now.len > 0 {
             self.level(s);
             std::mem::swap(&mut self.now, &mut self.next);
@@ -205,7 +206,6 @@ impl Walker {
             let v = self.now.items[k];
             self.step(s, v);
         }
-
     }
 
     /// Runs levels from `first` until `n` visits are pending (or none is),
@@ -223,25 +223,56 @@ impl Walker {
         pending
     }
 
-    /// One visit: the selected children of `x` against those of `y`. Two
-    /// overlapping leaves are reported; a leaf against a subtree is pushed as
-    /// its parent with only its side selected; two subtrees as a new pair.
+    /// One visit: the selected children of `x` against those of `y`.
     #[inline(always)]
     fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
         let (na, nb) = (&s.a[v.x as usize], &s.b[v.y as usize]);
         for i in 0..2 {
-            let ci = na.child[i];
-            let (x, mx) = if ci.is_node() { (ci.index(), 0b11) } else { (v.x, 1 << i) };
             for j in 0..2 {
-                let cj = nb.child[j];
-                let (y, my) = if cj.is_node() { (cj.index(), 0b11) } else { (v.y, 1 << j) };
                 let selected = (v.mask >> i) & (v.mask >> (2 + j)) & 1 != 0;
                 let hit = selected & na.bounds[i].overlaps(&nb.bounds[j]);
-                let leaves = ci.is_leaf() & cj.is_leaf();
-                self.out.push_if(s.pair(ci.index(), cj.index()), hit & leaves);
-                self.next.push_if(Visit { x, y, mask: mx | my << 2 }, hit & !leaves);
+                self.cross(s, (v.x, na, i), (v.y, nb, j), hit);
             }
         }
+    }
+
+    /// Files child `i` of node `x` against child `j` of node `y` when `hit`
+    /// (their bounds overlap): two leaves are reported; a leaf against a
+    /// subtree becomes a visit of the leaf's parent with only the leaf's side
+    /// selected; two subtrees a visit of both. Branch-free.
+    #[inline(always)]
+    fn cross<B: Bound>(
+        &mut self,
+        s: &Search<B>,
+        (x, na, i): (u32, &Node<B>, usize),
+        (y, nb, j): (u32, &Node<B>, usize),
+        hit: bool,
+    ) {
+        let (ci, cj) = (na.child[i], nb.child[j]);
+        let (vx, mx) = if ci.is_node() { (ci.index(), 0b11) } else { (x, 1 << i) };
+        let (vy, my) = if cj.is_node() { (cj.index(), 0b11) } else { (y, 1 << j) };
+        let leaves = ci.is_leaf() & cj.is_leaf();
+        self.out.push_if(s.pair(ci.index(), cj.index()), hit & leaves);
+        self.next.push_if(Visit { x: vx, y: vy, mask: mx | my << 2 }, hit & !leaves);
+    }
+
+    /// Every pair within one tree whose lowest common ancestor is one of the
+    /// internal nodes `nodes`: each node's two children against each other,
+    /// then the levels below.
+    fn siblings<B: Bound>(&mut self, s: &Search<B>, nodes: std::ops::Range<usize>) {
+        self.next.len = 0;
+        self.next.reserve(nodes.len());
+        self.out.reserve(nodes.len());
+        for x in nodes.rev() {
+            let n = &s.a[x];
+            // Free nodes have no second child.
+            if n.child[1] != Ref::NONE {
+                let hit = n.bounds[0].overlaps(&n.bounds[1]);
+                self.cross(s, (x as u32, n, 0), (x as u32, n, 1), hit);
+            }
+        }
+        std::mem::swap(&mut self.now, &mut self.next);
+        self.descend(s);
     }
 
     /// The pairs found so far, leaving the output empty.

@@ -91,10 +91,18 @@ impl<B: Bound> Tree<B> {
             if entry > limit {
                 continue;
             }
+            // Entries are computed in f64 and reported rounded down: a bound
+            // reported at exactly `limit` may enter just past it, and must
+            // not be culled, so that ties are decided by id.
+            let reach = limit.next_up();
             let n = &self.nodes[x as usize];
-            let t = [n.bounds[0].ray_entry(ray, limit), n.bounds[1].ray_entry(ray, limit)];
+            let t = [n.bounds[0].ray_entry(ray, reach), n.bounds[1].ray_entry(ray, reach)];
             // Push the farther child first, so the nearer is visited first.
-            let order = if t[1].unwrap_or(f32::INFINITY) < t[0].unwrap_or(f32::INFINITY) { [0, 1] } else { [1, 0] };
+            let order = if t[1].unwrap_or(f32::INFINITY) < t[0].unwrap_or(f32::INFINITY) {
+                [0, 1]
+            } else {
+                [1, 0]
+            };
             for side in order {
                 let Some(t) = t[side] else { continue };
                 let c = n.child[side];

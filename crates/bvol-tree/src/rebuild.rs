@@ -1,8 +1,8 @@
 //! Whole-tree construction: batch builds for level loads, and full rebuilds.
 
 use crate::build::Atom;
-use crate::morton::build_morton;
 use crate::error::TreeError;
+use crate::morton::build_morton;
 use crate::node::{Node, Ref};
 use crate::tree::{NONE, ROOT, check_bound, check_id};
 use crate::{Bound, Config, Tree};

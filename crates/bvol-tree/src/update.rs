@@ -46,7 +46,8 @@ impl<B: Bound> Tree<B> {
         }
         let mut frame = Frame::default();
         if self.is_empty() {
-            *self = Self::build(self.config, bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)))?;
+            *self =
+                Self::build(self.config, bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)))?;
             frame.inserted = bounds.len();
             return Ok(frame);
         }
@@ -177,29 +178,9 @@ impl<B: Bound> Tree<B> {
         if !self.upkeep.preorder {
             self.relayout();
         }
-        let mut inner = 0.0;
-        for x in (0..self.nodes.len()).rev() {
-            let (head, tail) = self.nodes.split_at_mut(x + 1);
-            let node = &mut head[x];
-            for side in 0..2 {
-                let c = node.child[side];
-                if c.is_node() {
-                    // Preorder: every child comes after its parent.
-                    let b = tail[c.index() as usize - x - 1].merged();
-                    inner += b.cost();
-                    node.bounds[side] = b;
-                } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
-                    let old = &mut node.bounds[side];
-                    if b != *old {
-                        moved.push(c.index());
-                        if !b.overlaps(old) {
-                            jumped.push(c.index());
-                        }
-                        *old = b;
-                    }
-                }
-            }
-        }
+        let mut found = Refit { moved, jumped, inner: 0.0 };
+        refit_subtree(&mut self.nodes, 0, bounds, &mut found);
+        let inner = found.inner;
         self.root_bound = self.nodes[0].merged();
         self.enlarged.fill(false);
         let root_area = self.root_bound.cost();
@@ -247,5 +228,106 @@ impl<B: Bound> Tree<B> {
             }
         }
         self.upkeep.preorder = true;
+    }
+}
+
+/// Subtrees with at least this many nodes are refit on two rayon tasks.
+const PARALLEL_REFIT: usize = 8192;
+
+/// What a refit found: leaves whose bound changed, those that jumped clear
+/// of their old bound, and the summed area of the internal nodes' bounds.
+struct Refit<'a> {
+    moved: &'a mut Vec<u32>,
+    jumped: &'a mut Vec<u32>,
+    inner: f64,
+}
+
+/// Refits the subtree laid out in preorder in `nodes` (its root first, named
+/// `base`), children before parents. Large subtrees split into their two
+/// child subtrees, refit on two rayon tasks; what they find is appended in a
+/// fixed order (second child's first), so the result is the same whatever
+/// the number of threads.
+fn refit_subtree<B: Bound>(
+    nodes: &mut [Node<B>],
+    base: usize,
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) {
+    if nodes.len() < PARALLEL_REFIT {
+        return refit_run(nodes, base, bounds, found);
+    }
+    let (head, rest) = nodes.split_at_mut(1);
+    let node = &mut head[0];
+    // In preorder the second child's subtree starts right after the first's.
+    let second = match node.child[1] {
+        c if c.is_node() => c.index() as usize - base - 1,
+        _ => rest.len(),
+    };
+    let (first_nodes, second_nodes) = rest.split_at_mut(second);
+    let part = |nodes: &mut [Node<B>], child: Ref| {
+        let (mut moved, mut jumped) = (Vec::new(), Vec::new());
+        let mut part = Refit { moved: &mut moved, jumped: &mut jumped, inner: 0.0 };
+        if child.is_node() {
+            refit_subtree(nodes, child.index() as usize, bounds, &mut part);
+        }
+        let inner = part.inner;
+        (moved, jumped, inner)
+    };
+    let (a, b) =
+        rayon::join(|| part(first_nodes, node.child[0]), || part(second_nodes, node.child[1]));
+    for (moved, jumped, inner) in [b, a] {
+        found.moved.extend_from_slice(&moved);
+        found.jumped.extend_from_slice(&jumped);
+        found.inner += inner;
+    }
+    // A child subtree's root is its run's first node.
+    let children = [first_nodes.first().map(Node::merged), second_nodes.first().map(Node::merged)];
+    refit_node(node, children, bounds, found);
+}
+
+/// Refits a preorder run of nodes sequentially, last to first.
+fn refit_run<B: Bound>(
+    nodes: &mut [Node<B>],
+    base: usize,
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) {
+    for x in (0..nodes.len()).rev() {
+        let (head, tail) = nodes.split_at_mut(x + 1);
+        let node = &mut head[x];
+        let child = |side: usize| {
+            let c = node.child[side];
+            // Preorder: every child comes after its parent.
+            c.is_node().then(|| tail[c.index() as usize - base - x - 1].merged())
+        };
+        let children = [child(0), child(1)];
+        refit_node(node, children, bounds, found);
+    }
+}
+
+/// Sets one node's child bounds: internal children's from their refit
+/// `children`, leaves' from `bounds` (recording moves and jumps).
+#[inline]
+fn refit_node<B: Bound>(
+    node: &mut Node<B>,
+    children: [Option<B>; 2],
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) {
+    for side in 0..2 {
+        let c = node.child[side];
+        if let Some(b) = children[side] {
+            found.inner += b.cost();
+            node.bounds[side] = b;
+        } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
+            let old = &mut node.bounds[side];
+            if b != *old {
+                found.moved.push(c.index());
+                if !b.overlaps(old) {
+                    found.jumped.push(c.index());
+                }
+                *old = b;
+            }
+        }
     }
 }

@@ -142,7 +142,8 @@ impl<B: Bound> Tree<B> {
         };
         for (i, n) in local.iter().enumerate() {
             let x = freed[i];
-            self.nodes[x as usize] = Node { bounds: n.bounds, child: [place(n.child[0]), place(n.child[1])] };
+            self.nodes[x as usize] =
+                Node { bounds: n.bounds, child: [place(n.child[0]), place(n.child[1])] };
             self.enlarged[x as usize] = false;
             for side in 0..2 {
                 self.set_parent(self.nodes[x as usize].child[side], x);

@@ -110,7 +110,11 @@ impl<B: Bound> Tree<B> {
             r = self.nodes[x as usize].child[0];
         }
         if free.len() != self.free_count {
-            return Err(Violation::NodeCount { reached: 0, free: free.len(), total: self.free_count });
+            return Err(Violation::NodeCount {
+                reached: 0,
+                free: free.len(),
+                total: self.free_count,
+            });
         }
         Ok(free)
     }
@@ -122,7 +126,11 @@ impl<B: Bound> Tree<B> {
         }
         let free = self.free_list()?;
         if free.len() != self.nodes.len() {
-            return Err(Violation::NodeCount { reached: 0, free: free.len(), total: self.nodes.len() });
+            return Err(Violation::NodeCount {
+                reached: 0,
+                free: free.len(),
+                total: self.nodes.len(),
+            });
         }
         Ok(())
     }

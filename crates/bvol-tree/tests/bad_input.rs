@@ -53,7 +53,10 @@ fn invalid_bounds_are_refused_everywhere() {
         frame[7] = b;
         assert_eq!(tree.update(&frame), Err(TreeError::InvalidBound { id: 7, reason }));
         unchanged(&tree);
-        assert_eq!(Tree::from_bounds(&frame).err(), Some(TreeError::InvalidBound { id: 7, reason }));
+        assert_eq!(
+            Tree::from_bounds(&frame).err(),
+            Some(TreeError::InvalidBound { id: 7, reason })
+        );
     }
 }
 
@@ -82,7 +85,10 @@ fn unknown_duplicate_and_out_of_range_ids_are_refused() {
     assert_eq!(tree.remove(u32::MAX), Err(TreeError::UnknownId { id: u32::MAX }));
     assert_eq!(tree.set_bound(99, unit(0.0)), Err(TreeError::UnknownId { id: 99 }));
     assert_eq!(tree.insert(4, unit(0.0)), Err(TreeError::DuplicateId { id: 4 }));
-    assert_eq!(tree.insert(Tree::<Aabb>::ID_LIMIT, unit(0.0)), Err(TreeError::IdOutOfRange { id: 1 << 28 }));
+    assert_eq!(
+        tree.insert(Tree::<Aabb>::ID_LIMIT, unit(0.0)),
+        Err(TreeError::IdOutOfRange { id: 1 << 28 })
+    );
     assert_eq!(tree.insert(u32::MAX, unit(0.0)), Err(TreeError::IdOutOfRange { id: u32::MAX }));
     unchanged(&tree);
     tree.remove(4).unwrap();

@@ -22,13 +22,21 @@ enum Op<B> {
     Set(u32, B),
     /// A frame update over ids `0..len`: each present leaf moves with
     /// probability `percent`%, a tenth of those teleport; absent ids are new.
-    Frame { len: u32, percent: u8, seed: u64 },
+    Frame {
+        len: u32,
+        percent: u8,
+        seed: u64,
+    },
     Rebuild,
     Refit,
     Optimize,
     /// Queries that change nothing.
     Region(B),
-    Cast { origin: [i8; 3], direction: [i8; 3], max_t: Option<u8> },
+    Cast {
+        origin: [i8; 3],
+        direction: [i8; 3],
+        max_t: Option<u8>,
+    },
     Cross(Vec<B>),
 }
 
@@ -130,7 +138,8 @@ impl<B: TestBound> Check<B> {
             Op::Cast { origin, direction, max_t } => self.cast(origin, direction, *max_t)?,
             Op::Cross(other) => {
                 let stat = Tree::from_bounds(other).unwrap();
-                let theirs: Vec<(u32, B)> = other.iter().enumerate().map(|(i, b)| (i as u32, *b)).collect();
+                let theirs: Vec<(u32, B)> =
+                    other.iter().enumerate().map(|(i, b)| (i as u32, *b)).collect();
                 let mut got = self.tree.pairs_with(&stat);
                 got.sort_unstable();
                 prop_assert_eq!(&got, &brute_cross(&self.leaves(), &theirs));
@@ -167,7 +176,11 @@ impl<B: TestBound> Check<B> {
                     if rng.below(10) == 0 {
                         b.shifted(Vec3::new(rng.range(-40.0, 40.0), rng.range(-40.0, 40.0), 0.0))
                     } else {
-                        b.shifted(Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+                        b.shifted(Vec3::new(
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                            rng.range(-1.0, 1.0),
+                        ))
                     }
                 }
                 Some(b) => b,
@@ -186,7 +199,12 @@ impl<B: TestBound> Check<B> {
         Ok(())
     }
 
-    fn cast(&self, origin: &[i8; 3], direction: &[i8; 3], max_t: Option<u8>) -> Result<(), TestCaseError> {
+    fn cast(
+        &self,
+        origin: &[i8; 3],
+        direction: &[i8; 3],
+        max_t: Option<u8>,
+    ) -> Result<(), TestCaseError> {
         let v = |a: &[i8; 3]| Vec3::new(a[0] as f32, a[1] as f32, a[2] as f32);
         let ray = Ray::new(v(origin), v(direction));
         let max_t = max_t.map_or(f32::INFINITY, f32::from);
@@ -227,8 +245,10 @@ impl<B: TestBound> Check<B> {
         prop_assert_eq!(&got, &want);
         self.set.update(&mut self.tree);
         prop_assert_eq!(self.set.pairs(), &want[..]);
-        let began: Vec<_> = want.iter().filter(|p| self.last.binary_search(p).is_err()).copied().collect();
-        let ended: Vec<_> = self.last.iter().filter(|p| want.binary_search(p).is_err()).copied().collect();
+        let began: Vec<_> =
+            want.iter().filter(|p| self.last.binary_search(p).is_err()).copied().collect();
+        let ended: Vec<_> =
+            self.last.iter().filter(|p| want.binary_search(p).is_err()).copied().collect();
         prop_assert_eq!(self.set.began(), &began[..]);
         prop_assert_eq!(self.set.ended(), &ended[..]);
         self.last = want;

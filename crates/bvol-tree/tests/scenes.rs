@@ -38,7 +38,11 @@ impl<B: TestBound> Scene<B> {
             if roll < jumping {
                 *b = Self::random(&mut self.rng, self.world);
             } else if roll < jumping + moving {
-                let d = Vec3::new(self.rng.range(-0.3, 0.3), self.rng.range(-0.3, 0.3), self.rng.range(-0.3, 0.3));
+                let d = Vec3::new(
+                    self.rng.range(-0.3, 0.3),
+                    self.rng.range(-0.3, 0.3),
+                    self.rng.range(-0.3, 0.3),
+                );
                 *b = b.shifted(d);
             }
         }
@@ -68,8 +72,10 @@ fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
         assert_eq!(got, want, "frame {f}");
         set.update(&mut tree);
         assert_eq!(set.pairs(), &want[..], "frame {f}");
-        let began: Vec<_> = want.iter().filter(|p| last.binary_search(p).is_err()).copied().collect();
-        let ended: Vec<_> = last.iter().filter(|p| want.binary_search(p).is_err()).copied().collect();
+        let began: Vec<_> =
+            want.iter().filter(|p| last.binary_search(p).is_err()).copied().collect();
+        let ended: Vec<_> =
+            last.iter().filter(|p| want.binary_search(p).is_err()).copied().collect();
         assert_eq!(set.began(), &began[..], "frame {f}");
         assert_eq!(set.ended(), &ended[..], "frame {f}");
         last = want;
@@ -79,6 +85,12 @@ fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
 #[test]
 fn aabb_scene_matches_brute_force() {
     against_brute_force::<Aabb>(3000, 15, Config::default());
+}
+
+#[test]
+fn large_scene_with_parallel_refit_matches_brute_force() {
+    // Over 8192 nodes: the refit splits into parallel subtrees.
+    against_brute_force::<Aabb>(12_000, 3, Config::default());
 }
 
 #[test]
@@ -113,7 +125,7 @@ fn results_do_not_depend_on_the_thread_count() {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            let mut scene = Scene::<Aabb>::new(6000, 11);
+            let mut scene = Scene::<Aabb>::new(20_000, 11);
             let stat = Tree::from_bounds(&Scene::<Aabb>::new(3000, 12).bounds).unwrap();
             let mut tree = Tree::new();
             let mut set = PairSet::new();
@@ -123,7 +135,12 @@ fn results_do_not_depend_on_the_thread_count() {
                 scene.step(moving, jumping);
                 tree.update(&scene.bounds).unwrap();
                 set.update(&mut tree);
-                seen.push((tree.pairs(), tree.pairs_with(&stat), set.pairs().to_vec(), set.began().to_vec()));
+                seen.push((
+                    tree.pairs(),
+                    tree.pairs_with(&stat),
+                    set.pairs().to_vec(),
+                    set.began().to_vec(),
+                ));
             }
             seen
         })

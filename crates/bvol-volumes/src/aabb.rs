@@ -29,6 +29,13 @@ impl Aabb {
         Aabb { min, max }
     }
 
+    /// The tight box of a non-empty point set: min and max of the coordinates.
+    pub(crate) fn of_points(points: &[Vec3]) -> Aabb {
+        let (min, max) =
+            points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+        Aabb { min, max }
+    }
+
     /// The box of f64 corners, rounded outward to f32.
     pub(crate) fn from_f64_outward(min: DVec3, max: DVec3) -> Aabb {
         Aabb {

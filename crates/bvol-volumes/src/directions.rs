@@ -41,12 +41,6 @@ pub const fn directions<const N: usize>() -> [[i8; 3]; N] {
     out
 }
 
-/// The f32 vector of an integer direction.
-#[inline]
-pub(crate) fn as_vec3(d: [i8; 3]) -> glam::Vec3 {
-    glam::Vec3::new(d[0] as f32, d[1] as f32, d[2] as f32)
-}
-
 /// The f64 vector of an integer direction.
 #[inline]
 pub(crate) fn as_dvec3(d: [i8; 3]) -> glam::DVec3 {

@@ -19,8 +19,8 @@
 
 use glam::{DMat3, DVec3, Vec3};
 
+use super::extremes::extremes;
 use crate::Obb;
-use crate::directions::{as_vec3, directions};
 use crate::obb::basis;
 
 /// Relative distance below which a third point counts as on the base line, or
@@ -40,9 +40,6 @@ const SLIVER: f64 = 1e-2;
 /// a tilted box would rank as flat beside the plane's own.
 const FLAT_BOX: f64 = 1e-6;
 
-/// Points per block of the extreme-point pass.
-const BLOCK: usize = 64;
-
 /// The DiTO box with `N` slab directions: DiTO-14 for `N = 7`, DiTO-26 for `N = 13`.
 pub(crate) fn dito<const N: usize>(points: &[Vec3]) -> Obb {
     let extremes = Extremes::<N>::of(points);
@@ -61,37 +58,25 @@ pub(crate) fn dito<const N: usize>(points: &[Vec3]) -> Obb {
 
 /// The extreme points of a set along each slab direction.
 struct Extremes<const N: usize> {
-    /// Least and greatest projection on each direction.
-    lo: [f32; N],
-    hi: [f32; N],
-    /// The points that attain them.
+    /// The points of least and greatest projection on each direction.
     lo_point: [DVec3; N],
     hi_point: [DVec3; N],
 }
 
 impl<const N: usize> Extremes<N> {
-    /// One pass over the points, in blocks. Within a block only the least and
-    /// greatest projections are tracked, branch-free, so that the compiler
-    /// keeps them in vector registers; the rare block that improves on the
-    /// extremes so far is scanned again for the point. The projections onto
-    /// directions with components in {-1, 0, 1} are sums and differences of
-    /// coordinates, compared in f32: rounding can only pick a near-extreme
-    /// point instead, and the final box is refit on all points anyway.
+    /// The extreme points, from the shared one-pass search.
     fn of(points: &[Vec3]) -> Self {
-        // Whole vectors of lanes: 8 for DiTO-14, 16 for DiTO-26.
-        let (lo, lo_at, hi, hi_at) =
-            if N <= 8 { scan::<N, 8>(points) } else { scan::<N, 16>(points) };
-        let at = |j: usize| points[j].as_dvec3();
-        Extremes { lo, hi, lo_point: lo_at.map(at), hi_point: hi_at.map(at) }
+        let at = extremes::<N>(points);
+        let point = |j: usize| points[j].as_dvec3();
+        Extremes { lo_point: at.map(|[lo, _]| point(lo)), hi_point: at.map(|[_, hi]| point(hi)) }
     }
 
-    /// The AABB's side lengths: the first three directions are the axes, whose
-    /// projections are the coordinates themselves; their differences are exact
-    /// in f64.
+    /// The AABB's side lengths: the first three directions are the axes, so
+    /// their extreme points' coordinates are the AABB's; the differences of
+    /// f32 values are exact in f64.
     fn aabb_lengths(&self) -> DVec3 {
-        let [lo, hi] =
-            [self.lo, self.hi].map(|e| DVec3::new(e[0] as f64, e[1] as f64, e[2] as f64));
-        hi - lo
+        let (lo, hi) = (&self.lo_point, &self.hi_point);
+        DVec3::new(hi[0].x - lo[0].x, hi[1].y - lo[1].y, hi[2].z - lo[2].z)
     }
 
     /// All `2N` extreme points.
@@ -152,45 +137,6 @@ impl<const N: usize> Extremes<N> {
         }
         best.axes
     }
-}
-
-/// The extreme projections on the `N` directions and the first points that
-/// attain them (least, then greatest), computed on `L >= N` lanes.
-fn scan<const N: usize, const L: usize>(
-    points: &[Vec3],
-) -> ([f32; N], [usize; N], [f32; N], [usize; N]) {
-    let dirs = const { directions::<N>() };
-    let lane = |k: usize| if k < N { as_vec3(dirs[k]) } else { Vec3::ZERO };
-    let (dx, dy, dz): ([f32; L], [f32; L], [f32; L]) = (
-        std::array::from_fn(|k| lane(k).x),
-        std::array::from_fn(|k| lane(k).y),
-        std::array::from_fn(|k| lane(k).z),
-    );
-    let project = |i: usize, p: &Vec3| dx[i] * p.x + dy[i] * p.y + dz[i] * p.z;
-    let (mut lo, mut hi) = ([f32::INFINITY; N], [f32::NEG_INFINITY; N]);
-    let (mut lo_at, mut hi_at) = ([0usize; N], [0usize; N]);
-    for (b, block) in points.chunks(BLOCK).enumerate() {
-        let (mut block_lo, mut block_hi) = ([f32::INFINITY; L], [f32::NEG_INFINITY; L]);
-        for p in block {
-            for k in 0..L {
-                let s = project(k, p);
-                block_lo[k] = if s < block_lo[k] { s } else { block_lo[k] };
-                block_hi[k] = if s > block_hi[k] { s } else { block_hi[k] };
-            }
-        }
-        let first = |i: usize, value: f32| {
-            b * BLOCK + block.iter().position(|p| project(i, p) == value).unwrap_or(0)
-        };
-        for i in 0..N {
-            if block_lo[i] < lo[i] {
-                (lo[i], lo_at[i]) = (block_lo[i], first(i, block_lo[i]));
-            }
-            if block_hi[i] > hi[i] {
-                (hi[i], hi_at[i]) = (block_hi[i], first(i, block_hi[i]));
-            }
-        }
-    }
-    (lo, lo_at, hi, hi_at)
 }
 
 /// The best axis triple so far and its box's rank on the extremes.

@@ -11,8 +11,8 @@
 
 use glam::{DMat3, DVec3};
 
-/// Rotations sweeps are cheap and Jacobi converges quadratically: a 3x3
-/// matrix is diagonal to f64 rounding after about 5 sweeps.
+/// A bound on sweeps: Jacobi converges quadratically, and a 3x3 matrix is
+/// diagonal to f64 rounding after about 5 of them.
 const MAX_SWEEPS: usize = 32;
 
 /// The eigenvalues of a symmetric matrix in decreasing order, and the matching
@@ -31,7 +31,7 @@ pub(crate) fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
     let mut a = [[0.0; 3]; 3];
     for (i, row) in a.iter_mut().enumerate() {
         for (j, x) in row.iter_mut().enumerate() {
-            // Column j, row i: mirror the upper triangle.
+            // Row min(i, j) of column max(i, j): the upper triangle, mirrored.
             *x = m.col(i.max(j))[i.min(j)] / scale;
         }
     }
@@ -49,7 +49,8 @@ pub(crate) fn symmetric_eigen(m: DMat3) -> (DVec3, DMat3) {
 }
 
 /// One Jacobi rotation in the `(p, q)` plane that zeroes `a[p][q]`, applied to
-/// `a` on both sides and accumulated into the rows of `v`. Returns whether it
+/// `a` on both sides and accumulated into `v`, whose columns become the
+/// eigenvectors. Returns whether it
 /// rotated: an entry already negligible beside both diagonal entries is set to
 /// zero instead (Numerical Recipes' test, which ends the sweeps).
 fn rotate(a: &mut [[f64; 3]; 3], v: &mut [[f64; 3]; 3], p: usize, q: usize) -> bool {

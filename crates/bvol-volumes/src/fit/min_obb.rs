@@ -5,7 +5,7 @@
 //! shadow on the plane of `n` (see `min_rect`), so the volume becomes a
 //! function of `n` alone, `V(n) = height(n) * rect(n)`, over two degrees of
 //! freedom. It is evaluated at the candidates that the exact algorithms
-//! enumerate, and the best is polished by local descent:
+//! enumerate, and the best few are polished by local descent:
 //!
 //! - a box face flush with each hull face (`n` a face normal; the optimum when
 //!   some box face is flush with a hull face);
@@ -13,18 +13,21 @@
 //!   whose Gauss-map arcs are antipodal: one edge on the top support plane,
 //!   the other on the bottom one). O'Rourke (1985, "Finding minimal enclosing
 //!   boxes") shows that minimal boxes have faces flush with hull edges where no
-//!   face is flush with a hull face; the regular tetrahedron, whose optimum is
-//!   its circumscribed cube, is found only this way;
+//!   face is flush with a hull face; the regular tetrahedron's optimum, its
+//!   circumscribed cube, is one of these and no face-flush box;
 //! - the axes of the PCA-hull and DiTO boxes;
-//! - Nelder-Mead descent on `V(n)` (Nelder & Mead 1965) from the best of them,
-//!   cycling `n` through the three axes of the current box, so that each box
-//!   axis in turn gets its rotation optimised: a descent over all three degrees
-//!   of freedom of a rotation.
+//! - Nelder-Mead descent on `V(n)` (Nelder & Mead 1965) from the best few of
+//!   them (several on small hulls, whose volume has many local minima), then
+//!   from the best result, cycling `n` through the three axes of the current
+//!   box, so that each box axis in turn gets its rotation optimised: a descent
+//!   over all three degrees of freedom of a rotation.
 //!
 //! Candidates are evaluated best-first by a lower bound, `height(n)` times the
 //! area of the shadow (which costs a fraction of the rectangle), until the
-//! bound reaches the best volume found. On large hulls the work is bounded:
-//! the largest faces and the longest edges go first.
+//! bound reaches the best volume found. Every box kept is measured on the
+//! vertices, so that rounding in a shadow can never pass off a box as smaller
+//! than it is. On large hulls the work is bounded: the largest faces and the
+//! longest edges go first.
 //!
 //! The result is never worse than the PCA-hull or DiTO boxes of the same input:
 //! those are compared last, as the f32 boxes they are.
@@ -60,7 +63,7 @@ const MAX_EVALS: usize = 60;
 
 /// A bound on the work of the descents from several starts, in vertices,
 /// faces and edges visited.
-const DESCENT_WORK: usize = 1 << 18;
+const DESCENT_WORK: usize = 1 << 17;
 
 /// The most starts for descent.
 const MAX_STARTS: usize = 8;
@@ -130,10 +133,17 @@ fn search(hull: &ConvexHull, baselines: &[Obb]) -> DMat3 {
             best.offer(eval.verified(c));
         }
     }
-    // One descent from each start, then every axis of the best.
-    let descended = best.kept.iter().map(|&c| descend(&mut eval, c.axes.x_axis, c));
-    let start = descended.fold(None, |b: Option<Candidate>, c| Some(b.map_or(c, |b| b.min(c))));
-    start.map_or(DMat3::IDENTITY, |c| polish(&mut eval, c).axes)
+    // With several starts, one descent from each; then every axis of the best.
+    let start = match best.kept[..] {
+        [] => return DMat3::IDENTITY,
+        [only] => only,
+        ref several => several
+            .iter()
+            .map(|&c| descend(&mut eval, c.axes.x_axis, c))
+            .reduce(Candidate::min)
+            .unwrap_or(several[0]),
+    };
+    polish(&mut eval, start).axes
 }
 
 /// How many candidates the local descent starts from: several on small hulls,
@@ -151,6 +161,7 @@ struct Best {
 }
 
 impl Best {
+    /// Room for `room >= 1` candidates.
     fn new(room: usize) -> Self {
         Best { kept: Vec::with_capacity(room + 1), room }
     }
@@ -302,6 +313,7 @@ struct Evaluator<'a> {
 }
 
 impl<'a> Evaluator<'a> {
+    /// An evaluator for `shape`.
     fn new(shape: &'a Shape) -> Self {
         Evaluator {
             shape,

@@ -9,7 +9,7 @@ use glam::DVec2;
 /// Edge length, relative to the polygon's extent, below which an edge is
 /// rounding noise: far above the rounding of coordinates computed in f64
 /// (about 1e-16 of the extent), far below anything a box's volume shows.
-const SLIVER: f64 = 1e-12;
+const NOISE: f64 = 1e-12;
 
 /// A rectangle around a point set: its area and the unit direction of one of
 /// its sides (the other is perpendicular).
@@ -78,7 +78,7 @@ fn calipers(hull: &[DVec2]) -> Rect {
     // Edges shorter than this are rounding noise between near-duplicate
     // vertices: their direction means nothing, and the calipers skip them.
     let (lo, hi) = hull.iter().fold((hull[0], hull[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-    let noise = (SLIVER * (hi - lo).max_element()).powi(2);
+    let noise = (NOISE * (hi - lo).max_element()).powi(2);
     let next = |i: usize| if i + 1 == k { 0 } else { i + 1 };
     // Moves a caliper forward while `key` grows: strict, so it always stops.
     let climb = |mut i: usize, key: DVec2| {
@@ -179,7 +179,7 @@ mod tests {
                 for p in &points {
                     // Outside by no more than the rounding-level tolerance.
                     let distance = (b - a).perp_dot(*p - a) / (b - a).length();
-                    prop_assert!(distance >= -4.0 * SLIVER, "{p} right of {a} {b}");
+                    prop_assert!(distance >= -4.0 * NOISE, "{p} right of {a} {b}");
                 }
             }
         }

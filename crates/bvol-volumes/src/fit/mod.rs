@@ -6,6 +6,7 @@
 mod dito;
 mod eigen;
 mod epos;
+mod extremes;
 mod min_obb;
 mod min_rect;
 mod min_sphere;
@@ -159,8 +160,6 @@ impl Aabb {
     /// The tight box of a point set (exact: min and max of the coordinates).
     pub fn fit(points: &[Vec3]) -> Result<Aabb, FitError> {
         check(points)?;
-        let (min, max) =
-            points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
-        Ok(Aabb { min, max })
+        Ok(Aabb::of_points(points))
     }
 }

@@ -3,16 +3,15 @@
 
 use glam::{DVec3, Vec3};
 
-use super::epos::extremes;
-use crate::Sphere;
+use super::extremes::extremes;
+use crate::{Aabb, Sphere};
 
 /// The sphere about the centre of the points' AABB; the radius comes from the
 /// containment pass (squared distances, one square root).
 pub(crate) fn aabb_center(points: &[Vec3]) -> Sphere {
-    let (lo, hi) =
-        points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
+    let b = Aabb::of_points(points);
     // Exact in f64: the sum of two f32 values halved.
-    Sphere::enclosing((lo.as_dvec3() + hi.as_dvec3()) * 0.5, points)
+    Sphere::enclosing((b.min.as_dvec3() + b.max.as_dvec3()) * 0.5, points)
 }
 
 /// The sphere about the mean of the points (summed in f64: a million f32
