@@ -93,7 +93,7 @@ impl Default for Config {
         Config {
             fat_size: 0.1,
             fat_motion: 2.0,
-            refit_fraction: 0.3,
+            refit_fraction: 0.001,
             drift: 0.3,
             rebuild_budget: 4096,
         }

@@ -87,11 +87,13 @@ impl<B: Bound> Tree<B> {
         frame.refit = true;
         frame.moved = moved.len();
         frame.reinserted = jumped.len();
-        for &id in &jumped {
-            // Clear of its old bound: stretching the ancestors across the gap
-            // would make every later pair search visit them.
-            let bound = self.remove_leaf(id);
-            self.insert_leaf(id, bound, &bound);
+        // Leaves that jumped clear of their old bound: left in place they would
+        // stretch their ancestors across the gap, and every later pair search
+        // would visit them. All are taken out before any goes back in, so
+        // none is placed under a node still stretched by another.
+        let bounds_of_jumped: Vec<B> = jumped.iter().map(|&id| self.remove_leaf(id)).collect();
+        for (&id, bound) in jumped.iter().zip(&bounds_of_jumped) {
+            self.insert_leaf(id, *bound, bound);
         }
         if moved.len() * 2 > self.len {
             self.changes.mark_all();

@@ -95,9 +95,18 @@ proptest! {
             let d = x.as_dvec3();
             prop_assert!(in_obb(&om, d) && in_sphere(&sm, d) && in_aabb(&am, d) && in_kdop(&km, d));
         }
-        // The OBB merge is not wasteful: no larger than the box on either input's axes.
-        let both: Vec<Vec3> = p.iter().chain(&q).copied().collect();
-        let _ = both;
+        // The OBB merge is refit tight on the 16 corners: each of its faces
+        // touches a corner of an input box.
+        let corners = |b: Obb| (0..8).map(move |i| {
+            let s = DVec3::new(if i & 1 == 0 { -1.0 } else { 1.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, if i & 4 == 0 { -1.0 } else { 1.0 });
+            b.center.as_dvec3() + b.axes.as_dmat3() * (s * b.half_extents.as_dvec3())
+        });
+        for i in 0..3 {
+            let a = om.axes.col(i).as_dvec3();
+            let reach = corners(oa).chain(corners(ob)).map(|c| (c - om.center.as_dvec3()).dot(a).abs()).fold(0.0, f64::max);
+            let size = om.half_extents.as_dvec3().length();
+            prop_assert!((reach - om.half_extents[i] as f64).abs() <= 1e-5 * size, "axis {i}: {reach} vs {}", om.half_extents[i]);
+        }
         prop_assert!((om.axes.transpose() * om.axes - Mat3::IDENTITY).abs().to_cols_array().iter().all(|e| *e < 1e-5));
     }
 
@@ -331,4 +340,56 @@ fn ray_special_cases() {
     let far = Sphere::new(Vec3::new(1e6, 0.0, 0.0), 1e-2);
     let t = far.ray_entry(&Ray::new(Vec3::ZERO, Vec3::X), 2e6).unwrap();
     assert!((t - (1e6 - 1e-2)).abs() <= 0.07, "{t}");
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// The AABB and every k-DOP hold every point, at scales 1e-4 to 1e4 and
+    /// offsets up to 1e6, rotated; degenerate sets (one point, collinear) give
+    /// zero-width slabs where the points have none.
+    #[test]
+    fn aabb_and_kdop_fits_hold_every_point(seed in any::<u64>(), log_scale in -4f32..4.0, offset in -1e6f32..1e6) {
+        let mut rng = SmallRng::seed_from_u64(seed);
+        let scale = 10f32.powf(log_scale);
+        let q = common::random_rotation(&mut rng);
+        let n = rng.random_range(1..60);
+        let p: Vec<Vec3> = cloud(&mut rng, n, scale, Vec3::ZERO).into_iter().map(|x| q * x + Vec3::splat(offset)).collect();
+        let aabb = Aabb::fit(&p).unwrap();
+        let (k6, k14, k18, k26) = (Kdop6::fit(&p).unwrap(), Kdop14::fit(&p).unwrap(), Kdop18::fit(&p).unwrap(), Kdop26::fit(&p).unwrap());
+        for x in &p {
+            let d = x.as_dvec3();
+            prop_assert!(aabb.contains_point(*x) && in_aabb(&aabb, d));
+            prop_assert!(in_kdop(&k6, d) && in_kdop(&k14, d) && in_kdop(&k18, d) && in_kdop(&k26, d));
+            prop_assert!(k14.contains_point(*x) && k26.contains_point(*x));
+        }
+        // Tight: every slab touches a point (up to the outward rounding).
+        for (i, dir) in Kdop26::DIRECTIONS.iter().enumerate() {
+            let d = DVec3::new(dir[0] as f64, dir[1] as f64, dir[2] as f64);
+            let hi = p.iter().map(|x| d.dot(x.as_dvec3())).fold(f64::NEG_INFINITY, f64::max);
+            let slack = 4.0 * f32::EPSILON as f64 * hi.abs().max(1e-30);
+            prop_assert!(k26.max[i] as f64 - hi <= slack, "slab {i}: {} vs {hi}", k26.max[i]);
+        }
+        let single = [p[0]];
+        prop_assert_eq!(Aabb::fit(&single).unwrap(), Aabb::new(p[0], p[0]));
+        let k = Kdop14::fit(&single).unwrap();
+        prop_assert!(k.contains_point(p[0]) && k.volume() == 0.0);
+    }
+}
+
+#[test]
+fn aabb_and_kdop_fits_hold_the_real_meshes() {
+    for r in common::references() {
+        let p = common::mesh(&r.name);
+        let aabb = Aabb::fit(&p).unwrap();
+        assert!((aabb.volume() as f64 - r.aabb_volume).abs() <= 1e-6 * r.aabb_volume, "{}", r.name);
+        let k26 = Kdop26::fit(&p).unwrap();
+        assert!(p.iter().all(|x| aabb.contains_point(*x) && k26.contains_point(*x)));
+        assert!(k26.volume() <= aabb.volume());
+    }
+    assert!(matches!(Kdop26::fit(&[]), Err(bvol_volumes::FitError::Empty)));
+    assert!(matches!(
+        Aabb::fit(&[Vec3::ZERO, Vec3::NAN]),
+        Err(bvol_volumes::FitError::NonFinite { index: 1 })
+    ));
 }
