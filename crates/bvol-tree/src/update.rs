@@ -190,34 +190,51 @@ impl<B: Bound> Tree<B> {
     }
 
     /// Lays the nodes out in preorder from node 0 (children after parents,
-    /// each subtree contiguous), dropping free nodes.
+    /// each subtree contiguous), dropping free nodes. In place: the nodes are
+    /// permuted by following cycles, so no second node array is allocated
+    /// (and the cache is not flushed by copying one).
     pub(crate) fn relayout(&mut self) {
-        let used = self.nodes.len() - self.free_count;
-        let mut order = Vec::with_capacity(used);
+        let n = self.nodes.len();
+        // Preorder positions for the nodes in use, then the free ones.
+        let mut position = vec![NONE; n];
+        let mut next = 0;
         let mut stack = vec![self.root.index()];
         while let Some(x) = stack.pop() {
-            order.push(x);
-            let n = &self.nodes[x as usize];
+            position[x as usize] = next;
+            next += 1;
+            let node = &self.nodes[x as usize];
             for side in (0..2).rev() {
-                if n.child[side].is_node() {
-                    stack.push(n.child[side].index());
+                if node.child[side].is_node() {
+                    stack.push(node.child[side].index());
                 }
             }
         }
-        let mut new_index = vec![NONE; self.nodes.len()];
-        for (new, &old) in order.iter().enumerate() {
-            new_index[old as usize] = new as u32;
+        let used = next as usize;
+        for p in position.iter_mut().filter(|p| **p == NONE) {
+            *p = next;
+            next += 1;
         }
-        let remap = |r: Ref| if r.is_node() { Ref::node(new_index[r.index() as usize]) } else { r };
-        let nodes: Vec<Node<B>> = order
-            .iter()
-            .map(|&old| {
-                let n = self.nodes[old as usize];
-                Node { bounds: n.bounds, child: [remap(n.child[0]), remap(n.child[1])] }
-            })
-            .collect();
-        self.enlarged = order.iter().map(|&old| self.enlarged[old as usize]).collect();
-        self.nodes = nodes;
+        for (node, &p) in self.nodes.iter_mut().zip(&position) {
+            if (p as usize) < used {
+                for c in &mut node.child {
+                    if c.is_node() {
+                        *c = Ref::node(position[c.index() as usize]);
+                    }
+                }
+            }
+        }
+        for i in 0..n {
+            // Send the node at `i` where it belongs until the one that
+            // belongs at `i` arrives.
+            while position[i] as usize != i {
+                let j = position[i] as usize;
+                self.nodes.swap(i, j);
+                self.enlarged.swap(i, j);
+                position.swap(i, j);
+            }
+        }
+        self.nodes.truncate(used);
+        self.enlarged.truncate(used);
         self.parents.clear();
         self.parents.resize(used, NONE);
         self.free = Ref::NONE;

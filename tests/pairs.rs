@@ -1,0 +1,130 @@
+//! The broadphase end to end: generated scenes written as box traces, read
+//! back, run through the tree frame by frame, and every frame's pair digest
+//! compared with brute force; and the same through `bvol bench pairs --load`.
+
+use std::process::Command;
+
+use bvol::scenes::{Scene, SceneKind};
+use bvol::volumes::Aabb;
+use bvol::{BoxTrace, PairDigest};
+use bvol_tree::Tree;
+
+/// Every overlapping pair by testing every pair, as a digest.
+fn brute_digest(boxes: &[Aabb]) -> PairDigest {
+    let mut d = PairDigest::default();
+    for a in 0..boxes.len() {
+        for b in a + 1..boxes.len() {
+            if boxes[a].overlaps(&boxes[b]) {
+                d.add_pair(a as u32, b as u32);
+            }
+        }
+    }
+    d
+}
+
+fn record(kind: SceneKind, n: usize, frames: usize) -> BoxTrace {
+    let mut scene = Scene::new(kind, n, 11);
+    let mut trace = BoxTrace::new(n);
+    for _ in 0..frames {
+        trace.push_frame(scene.step()).unwrap();
+    }
+    trace
+}
+
+#[test]
+fn tree_pairs_equal_brute_force_on_traces_of_20k_boxes() {
+    for kind in SceneKind::ALL {
+        let mut bytes = Vec::new();
+        record(kind, 20_000, 3).write_to(&mut bytes).unwrap();
+        let trace = BoxTrace::from_bytes(&bytes).unwrap();
+        let mut tree = Tree::<Aabb>::new();
+        let mut pairs = Vec::new();
+        for f in 0..trace.frames() {
+            let boxes = trace.frame(f);
+            tree.update(boxes).unwrap();
+            tree.validate().unwrap();
+            tree.pairs_into(&mut pairs);
+            assert!(pairs.iter().all(|&(a, b)| a < b), "{kind}: pairs not ordered");
+            let digest = PairDigest::of_pairs(pairs.iter().copied());
+            assert_eq!(digest.count as usize, pairs.len(), "{kind}: a pair reported twice");
+            assert_eq!(digest, brute_digest(boxes), "{kind}, frame {f}");
+        }
+    }
+}
+
+#[test]
+fn bench_pairs_reads_a_trace_and_prints_its_digest() {
+    let trace = record(SceneKind::Teleport, 3_000, 5);
+    let path = std::env::temp_dir().join(format!("bvol-pairs-{}.bphf", std::process::id()));
+    trace.write(&path).unwrap();
+    let expected = (0..trace.frames()).fold(PairDigest::default(), |mut d, f| {
+        d += brute_digest(trace.frame(f));
+        d
+    });
+    for threads in ["1", "2"] {
+        let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
+            .args(["bench", "pairs", "--load", path.to_str().unwrap(), "--threads", threads])
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8(out.stdout).unwrap();
+        let lines: Vec<&str> = text.lines().collect();
+        let header: Vec<&str> = lines[0].split('\t').collect();
+        let row: Vec<&str> = lines[1].split('\t').collect();
+        assert_eq!(
+            header[..10],
+            [
+                "n",
+                "frames",
+                "avg_pairs",
+                "build_ms",
+                "median_ms",
+                "mean_ms",
+                "threads",
+                "count",
+                "h1",
+                "h2"
+            ]
+        );
+        assert_eq!(row[..2], ["3000", "5"]);
+        assert_eq!(row[6], threads);
+        assert_eq!(row[7..10].join("\t"), expected.to_string());
+    }
+    // A broken trace is a one-line error naming the file, exit code 2.
+    std::fs::write(&path, b"BPHF\x01\0\0\0").unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
+        .args(["bench", "pairs", "--load", path.to_str().unwrap()])
+        .output()
+        .unwrap();
+    let err = String::from_utf8(out.stderr).unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    assert!(err.contains(path.to_str().unwrap()) && err.contains("truncated"), "{err}");
+    std::fs::remove_file(path).unwrap();
+}
+
+#[test]
+fn bench_pairs_dumps_the_trace_it_ran() {
+    let path = std::env::temp_dir().join(format!("bvol-dump-{}.bphf", std::process::id()));
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_bvol")).args(args).output().unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        let text = String::from_utf8(out.stdout).unwrap();
+        text.lines().nth(1).unwrap().split('\t').skip(7).take(3).collect::<Vec<_>>().join("\t")
+    };
+    let generated = run(&[
+        "bench",
+        "pairs",
+        "--scene",
+        "mixed",
+        "--n",
+        "2000",
+        "--frames",
+        "4",
+        "--dump",
+        path.to_str().unwrap(),
+    ]);
+    let trace = BoxTrace::read(&path).unwrap();
+    assert_eq!((trace.n(), trace.frames()), (2000, 4));
+    assert_eq!(run(&["bench", "pairs", "--load", path.to_str().unwrap()]), generated);
+    std::fs::remove_file(path).unwrap();
+}
