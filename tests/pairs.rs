@@ -126,5 +126,7 @@ fn bench_pairs_dumps_the_trace_it_ran() {
     let trace = BoxTrace::read(&path).unwrap();
     assert_eq!((trace.n(), trace.frames()), (2000, 4));
     assert_eq!(run(&["bench", "pairs", "--load", path.to_str().unwrap()]), generated);
+    // The persistent pair set's pairs are the same.
+    assert_eq!(run(&["bench", "pairs", "--load", path.to_str().unwrap(), "--events"]), generated);
     std::fs::remove_file(path).unwrap();
 }

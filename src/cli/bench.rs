@@ -9,7 +9,7 @@ use std::time::Instant;
 use bvol::scenes::{Scene, SceneKind};
 use bvol::volumes::Aabb;
 use bvol::{BoxTrace, PairDigest, TraceWriter};
-use bvol_tree::Tree;
+use bvol_tree::{PairSet, Tree};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -37,6 +37,9 @@ pub struct PairsArgs {
     /// Also write the generated frames to a box-trace file.
     #[arg(long, conflicts_with = "load")]
     dump: Option<PathBuf>,
+    /// Keep a persistent pair set and time its began / ended events too.
+    #[arg(long)]
+    events: bool,
 }
 
 /// A source of frames.
@@ -63,6 +66,9 @@ struct Run {
     frame_ms: Vec<f64>,
     digest: PairDigest,
     bytes: usize,
+    /// Began and ended events over all frames (with `--events`).
+    began: u64,
+    ended: u64,
 }
 
 pub fn run(args: PairsArgs) -> Result<(), String> {
@@ -91,11 +97,16 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         .num_threads(args.threads)
         .build()
         .map_err(|e| e.to_string())?;
-    let run = pool.install(|| measure(frames, n, count, &mut dump))?;
+    let run = pool.install(|| measure(frames, n, count, args.events, &mut dump))?;
     if let (Some(writer), Some(path)) = (dump, &args.dump) {
         writer.finish().map_err(|e| format!("{}: {e}", path.display()))?;
     }
-    print(&run, args.threads, args.load.as_ref().map_or(args.scene.name(), |_| "trace"));
+    print(
+        &run,
+        args.threads,
+        args.load.as_ref().map_or(args.scene.name(), |_| "trace"),
+        args.events,
+    );
     Ok(())
 }
 
@@ -103,6 +114,7 @@ fn measure(
     mut frames: Frames,
     n: usize,
     count: usize,
+    events: bool,
     dump: &mut Option<TraceWriter<BufWriter<File>>>,
 ) -> Result<Run, String> {
     let progress = ProgressBar::new(count as u64).with_style(
@@ -110,6 +122,7 @@ fn measure(
     );
     let mut tree = Tree::<Aabb>::new();
     let mut pairs = Vec::new();
+    let mut set = PairSet::new();
     let mut run = Run {
         n,
         frames: count,
@@ -118,6 +131,8 @@ fn measure(
         frame_ms: Vec::with_capacity(count),
         digest: PairDigest::default(),
         bytes: 0,
+        began: 0,
+        ended: 0,
     };
     for f in 0..count {
         let boxes = frames.frame(f);
@@ -130,8 +145,18 @@ fn measure(
         } else {
             tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?;
         }
-        tree.pairs_into(&mut pairs);
+        if events {
+            set.update(&mut tree);
+        } else {
+            tree.pairs_into(&mut pairs);
+        }
         let ms = started.elapsed().as_secs_f64() * 1e3;
+        if events {
+            pairs.clear();
+            pairs.extend_from_slice(set.pairs());
+            run.began += set.began().len() as u64;
+            run.ended += set.ended().len() as u64;
+        }
         if f == 0 {
             run.build_ms = ms;
         } else {
@@ -146,7 +171,7 @@ fn measure(
     Ok(run)
 }
 
-fn print(run: &Run, threads: usize, source: &str) {
+fn print(run: &Run, threads: usize, source: &str, events: bool) {
     let mut sorted = run.frame_ms.clone();
     sorted.sort_by(f64::total_cmp);
     let median = match sorted.len() {
@@ -158,11 +183,17 @@ fn print(run: &Run, threads: usize, source: &str) {
         if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
     let avg_pairs = run.pairs as f64 / run.frames as f64;
     let per_body = run.bytes as f64 / run.n.max(1) as f64;
-    println!(
-        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body"
+    let mut header = String::from(
+        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body",
     );
-    println!(
+    let mut row = format!(
         "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}",
         run.n, run.frames, run.build_ms, run.digest
     );
+    if events {
+        let per_frame = |k: u64| k as f64 / run.frames as f64;
+        header.push_str("\tavg_began\tavg_ended");
+        row.push_str(&format!("\t{:.1}\t{:.1}", per_frame(run.began), per_frame(run.ended)));
+    }
+    println!("{header}\n{row}");
 }
