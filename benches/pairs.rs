@@ -119,8 +119,11 @@ impl Broadphase for BruteForce {
     }
 }
 
-fn methods(n: usize) -> Vec<(&'static str, fn() -> Box<dyn Broadphase>)> {
-    let mut out: Vec<(&'static str, fn() -> Box<dyn Broadphase>)> = vec![
+/// A named way to make a fresh broadphase.
+type Method = (&'static str, fn() -> Box<dyn Broadphase>);
+
+fn methods(n: usize) -> Vec<Method> {
+    let mut out: Vec<Method> = vec![
         ("bvol", || Box::new(BvolTree::default())),
         ("sweep-and-prune", || Box::new(SweepAndPrune::default())),
         ("parry3d", || Box::new(Parry::default())),

@@ -93,9 +93,10 @@ impl Bound for Aabb {
         }
     }
 
+    /// Halves first: `(min + max) / 2` overflows for boxes past 1.7e38.
     #[inline]
     fn center(&self) -> Vec3 {
-        Aabb::center(self)
+        self.min * 0.5 + self.max * 0.5
     }
 
     fn size(&self) -> f32 {

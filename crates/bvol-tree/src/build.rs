@@ -36,13 +36,26 @@ pub(crate) struct Atom<B: Bound> {
     pub(crate) center: Vec3,
     /// The leaves it stands for: 1, or a cluster's size.
     pub(crate) weight: u32,
+    /// Its size class: the binary exponent of its surface area.
+    pub(crate) class: u8,
 }
 
 impl<B: Bound> Atom<B> {
     /// The atom for a leaf or kept subtree `r` with bound `bound`.
     pub(crate) fn new(r: Ref, bound: B) -> Self {
-        Atom { r, bound, center: bound.center(), weight: 1 }
+        Self::weighted(r, bound, 1)
     }
+
+    /// An atom standing for `weight` leaves.
+    pub(crate) fn weighted(r: Ref, bound: B, weight: u32) -> Self {
+        Atom { r, bound, center: bound.center(), weight, class: size_class(&bound) }
+    }
+}
+
+/// The binary exponent of a bound's surface area, from the bits of the f32
+/// area (0 for zero, 255 for infinite): a size class in one shift.
+pub(crate) fn size_class<B: Bound>(bound: &B) -> u8 {
+    ((bound.cost() as f32).to_bits() >> 23) as u8
 }
 
 /// Builds a cluster atom into its nodes: given the atom, its `weight - 1`
@@ -124,19 +137,51 @@ fn split<B: Bound>(atoms: &mut [Atom<B>], depth: u32) -> usize {
     if n <= SWEEP {
         return sweep(atoms, axis);
     }
-    let (min, extent) = (lo[axis], hi[axis] - lo[axis]);
-    // Fewer bins for short ranges: the sweeps cost O(bins) per node, which
-    // dominates the bottom levels of the tree when it is a fixed 16.
-    let bins = n.clamp(2, BINS);
-    let scale = bins as f32 / extent;
-    if depth >= SAH_DEPTH || !(extent > 0.0 && scale.is_finite()) {
+    if depth >= SAH_DEPTH {
         return median(atoms, axis);
     }
-    let bin = |a: &Atom<B>| (((a.center[axis] - min) * scale) as usize).min(bins - 1);
-    match best_bin(atoms, bins, bin) {
-        Some(last_left) => partition(atoms, |a| bin(a) <= last_left),
+    match place_split(atoms, axis, lo[axis], hi[axis] - lo[axis]) {
+        Some((bins, last)) => partition(atoms, |a| bins.of(a) <= last),
         None => median(atoms, axis),
     }
+}
+
+/// Bins of atom centres along one axis.
+#[derive(Clone, Copy)]
+struct Bins {
+    axis: usize,
+    min: f32,
+    scale: f32,
+    count: usize,
+}
+
+impl Bins {
+    /// The bin of an atom's centre.
+    #[inline]
+    fn of<B: Bound>(&self, a: &Atom<B>) -> usize {
+        (((a.center[self.axis] - self.min) * self.scale) as usize).min(self.count - 1)
+    }
+}
+
+/// The cheapest binned split by centre along `axis` (centres spanning
+/// `min .. min + extent`), if any: the bins, and the last bin of the left
+/// half.
+fn place_split<B: Bound>(
+    atoms: &[Atom<B>],
+    axis: usize,
+    min: f32,
+    extent: f32,
+) -> Option<(Bins, usize)> {
+    // Fewer bins for short ranges: the sweeps cost O(bins) per node, which
+    // dominates the bottom levels of the tree when it is a fixed 16.
+    let count = atoms.len().clamp(2, BINS);
+    let scale = count as f32 / extent;
+    if !(extent > 0.0 && scale.is_finite()) {
+        return None;
+    }
+    let bins = Bins { axis, min, scale, count };
+    let last = best_bin(atoms, count, |a| bins.of(a))?;
+    Some((bins, last))
 }
 
 /// The last bin of the left half in the cheapest binned split, `None` when no

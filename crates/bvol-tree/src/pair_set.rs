@@ -46,8 +46,11 @@ pub struct PairSet {
     pairs: Vec<(u32, u32)>,
     began: Vec<(u32, u32)>,
     ended: Vec<(u32, u32)>,
-    /// Reused buffer: the new pairs of an update.
+    /// Reused buffers: the new pairs of an update, and scratch for sorting
+    /// and merging.
     fresh: Vec<(u32, u32)>,
+    sorted: Vec<(u32, u32)>,
+    starts: Vec<usize>,
 }
 
 impl PairSet {
@@ -78,20 +81,25 @@ impl PairSet {
         let full = changes.all() || changes.ids().len() as f32 > FULL_FRACTION * tree.len() as f32;
         if full {
             tree.pairs_into(&mut self.fresh);
-            sort_pairs(&mut self.fresh);
+            self.sort_fresh();
             diff(&self.pairs, &self.fresh, &mut self.ended, &mut self.began);
             std::mem::swap(&mut self.pairs, &mut self.fresh);
         } else {
             self.changed_pairs(tree);
-            // The old pairs touching a changed leaf are the candidates to end;
-            // the others are kept as they are.
-            let old = std::mem::take(&mut self.pairs);
-            let (touched, kept): (Vec<_>, Vec<_>) =
-                old.iter().partition(|&&(a, b)| changes.is_marked(a) || changes.is_marked(b));
-            diff(&touched, &self.fresh, &mut self.ended, &mut self.began);
-            self.pairs = old;
-            self.pairs.clear();
-            merge(&kept, &self.fresh, &mut self.pairs);
+            // The old pairs touching a changed leaf are the candidates to end
+            // (moved aside, in order); the others are kept as they are.
+            self.sorted.clear();
+            self.pairs.retain(|&(a, b)| {
+                let touched = changes.is_marked(a) || changes.is_marked(b);
+                if touched {
+                    self.sorted.push((a, b));
+                }
+                !touched
+            });
+            diff(&self.sorted, &self.fresh, &mut self.ended, &mut self.began);
+            self.sorted.clear();
+            merge(&self.pairs, &self.fresh, &mut self.sorted);
+            std::mem::swap(&mut self.pairs, &mut self.sorted);
         }
         tree.changes.clear();
     }
@@ -121,33 +129,35 @@ impl PairSet {
         for part in parts {
             self.fresh.extend_from_slice(&part);
         }
-        sort_pairs(&mut self.fresh);
+        self.sort_fresh();
     }
-}
 
-/// Sorts pairs by `(a, b)`: a counting sort on `a` (pairs cluster on few
-/// values of `b` per `a`), then insertion sort within each run of equal `a`.
-/// O(pairs + largest id), against O(p log p) for a comparison sort.
-fn sort_pairs(pairs: &mut Vec<(u32, u32)>) {
-    let Some(top) = pairs.iter().map(|p| p.0).max() else { return };
-    let mut starts = vec![0usize; top as usize + 2];
-    for p in pairs.iter() {
-        starts[p.0 as usize + 1] += 1;
+    /// Sorts `fresh` by `(a, b)`: two stable counting sorts, on `b` then on
+    /// `a` (an LSD radix sort with one digit per id). O(pairs + largest id),
+    /// against O(p log p) for a comparison sort; the buffers are kept, so a
+    /// frame allocates nothing.
+    fn sort_fresh(&mut self) {
+        let Some(top) = self.fresh.iter().map(|p| p.1).max() else { return };
+        for key in [|p: &(u32, u32)| p.1, |p: &(u32, u32)| p.0] {
+            let starts = &mut self.starts;
+            starts.clear();
+            starts.resize(top as usize + 2, 0);
+            for p in &self.fresh {
+                starts[key(p) as usize + 1] += 1;
+            }
+            for i in 1..starts.len() {
+                starts[i] += starts[i - 1];
+            }
+            self.sorted.clear();
+            self.sorted.resize(self.fresh.len(), (0, 0));
+            for p in &self.fresh {
+                let slot = &mut starts[key(p) as usize];
+                self.sorted[*slot] = *p;
+                *slot += 1;
+            }
+            std::mem::swap(&mut self.fresh, &mut self.sorted);
+        }
     }
-    for i in 1..starts.len() {
-        starts[i] += starts[i - 1];
-    }
-    let mut sorted = vec![(0, 0); pairs.len()];
-    let mut next = starts.clone();
-    for &p in pairs.iter() {
-        let slot = &mut next[p.0 as usize];
-        sorted[*slot] = p;
-        *slot += 1;
-    }
-    for w in starts.windows(2) {
-        sorted[w[0]..w[1]].sort_unstable();
-    }
-    *pairs = sorted;
 }
 
 /// Given sorted `old` and `new`, fills `gone` with `old \ new` and `come`
@@ -181,7 +191,7 @@ fn diff(
     come.extend_from_slice(&new[j..]);
 }
 
-/// Merges two sorted, disjoint lists into `out`.
+/// Merges two sorted, disjoint lists, appending to `out`.
 fn merge(a: &[(u32, u32)], b: &[(u32, u32)], out: &mut Vec<(u32, u32)>) {
     out.reserve(a.len() + b.len());
     let (mut i, mut j) = (0, 0);

@@ -5,7 +5,11 @@
 //! The search is a simultaneous descent over pairs of internal nodes, with a
 //! mask of which children take part, so that a leaf met against a subtree
 //! stays represented by its parent node and every step has the same shape:
-//! load two nodes, four overlap tests, branch-free pushes.
+//! load two nodes, four overlap tests, branch-free pushes. It runs breadth
+//! first, a level of independent steps at a time, which the processor
+//! overlaps; and over the nodes from last to first, so that a node's two
+//! subtrees, searched just before it, are still in cache when the search
+//! between them starts (on 100 000 boxes this halved the time).
 //!
 //! The work is cut into a fixed list of independent tasks, fixed by the trees
 //! alone, which rayon runs in parallel; their outputs are concatenated in task
@@ -23,6 +27,8 @@ use crate::{Bound, Tree};
 const CHUNK: usize = 256;
 /// A two-tree search is expanded until it has this many pending visits.
 const TASKS: usize = 512;
+/// A breadth-first level with more visits than this is split in two tasks.
+const SPLIT: usize = 4096;
 
 /// A pair of internal nodes to visit, `x` in the first tree and `y` in the
 /// second: the children of `x` selected by bits 0-1 of `mask` against the
@@ -189,8 +195,31 @@ impl Walker {
     /// breadth-first: the visits of one level do not depend on each other,
     /// so the processor overlaps their node loads and overlap tests, where a
     /// depth-first stack chains every step on the one before.
+    ///
+    /// A level wider than [`SPLIT`] is halved and the halves descended on
+    /// two rayon tasks, their pairs appended left then right: the split
+    /// depends on the level's width only, so the output does not depend on
+    /// the thread count, and one wide search (a large leaf against all the
+    /// small ones it covers) no longer holds up the whole pair search.
     fn descend<B: Bound>(&mut self, s: &Search<B>) {
         while self.now.len > 0 {
+            if self.now.len > SPLIT {
+                let (left, right) = self.now.items[..self.now.len].split_at(self.now.len / 2);
+                let half = |visits: &[Visit]| {
+                    let mut walker = Walker::default();
+                    walker.run(s, visits);
+                    walker.take()
+                };
+                let (a, b) = rayon::join(|| half(left), || half(right));
+                for pairs in [a, b] {
+                    self.out.reserve(pairs.len());
+                    self.out.items[self.out.len..self.out.len + pairs.len()]
+                        .copy_from_slice(&pairs);
+                    self.out.len += pairs.len();
+                }
+                self.now.len = 0;
+                return;
+            }
             self.level(s);
             std::mem::swap(&mut self.now, &mut self.next);
         }

@@ -69,11 +69,10 @@ impl<B: Bound> Tree<B> {
         let mut best: Option<(u32, f32)> = None;
         let mut limit = max_t;
         let mut consider = |id: u32, t: f32, limit: &mut f32| {
-            if let Some(d) = exact(id, t).filter(|&d| d <= *limit) {
-                if best.is_none_or(|(b, bd)| d < bd || (d == bd && id < b)) {
-                    best = Some((id, d));
-                    *limit = d;
-                }
+            let better = |d: f32| best.is_none_or(|(b, bd)| d < bd || (d == bd && id < b));
+            if let Some(d) = exact(id, t).filter(|&d| d <= *limit && better(d)) {
+                best = Some((id, d));
+                *limit = d;
             }
         };
         match self.root {

@@ -75,7 +75,7 @@ pub struct Tree<B: Bound> {
     pub(crate) changes: Changes,
     /// Tuning.
     pub(crate) config: Config,
-    /// Upkeep state: costs measured at the last rebuild, rebuild cursor.
+    /// Upkeep state: the cost at the last whole build, the layout, scratch.
     pub(crate) upkeep: crate::upkeep::Upkeep,
 }
 
@@ -379,7 +379,8 @@ impl<B: Bound> Tree<B> {
             } else {
                 usize::from(lower[1] < lower[0])
             };
-            if !(lower[side] < best_cost) {
+            // Also stops on a NaN cost (never for finite bounds).
+            if lower[side].partial_cmp(&best_cost) != Some(std::cmp::Ordering::Less) {
                 break;
             }
             (base_area, direct) = (areas[side], directs[side]);
@@ -452,7 +453,7 @@ impl<B: Bound> Tree<B> {
 
     /// A node from the free list, or a new one; its parent is set by `link`.
     pub(crate) fn alloc_node(&mut self, node: Node<B>) -> u32 {
-        self.upkeep.preorder = false;
+        self.upkeep.reshaped();
         if self.free == Ref::NONE {
             self.nodes.push(node);
             self.parents.push(NONE);
@@ -468,7 +469,7 @@ impl<B: Bound> Tree<B> {
 
     /// Returns node `x` to the free list.
     pub(crate) fn free_node(&mut self, x: u32) {
-        self.upkeep.preorder = false;
+        self.upkeep.reshaped();
         let mut empty = Node::empty();
         empty.child[0] = self.free;
         self.nodes[x as usize] = empty;

@@ -14,9 +14,12 @@ pub(crate) struct Upkeep {
     pub(crate) built_cost: f64,
     /// Fraction of leaves the last [`Tree::update`] found moved.
     pub(crate) moved_fraction: f32,
-    /// Whether the nodes are in preorder with none free (see
-    /// [`Tree::relayout`]).
+    /// Whether the nodes are laid out in preorder from the root at node 0,
+    /// none free (true after a whole build or a relayout, false after any
+    /// other change of shape).
     pub(crate) preorder: bool,
+    /// Whether the shape changed since the last refit.
+    pub(crate) reshaped: bool,
     /// Scratch of [`Tree::update`]: moved ids.
     pub(crate) moved: Vec<u32>,
     /// Scratch of [`Tree::update`]: ids that jumped clear of their bound.
@@ -29,6 +32,7 @@ impl Default for Upkeep {
             built_cost: 0.0,
             moved_fraction: 0.0,
             preorder: true,
+            reshaped: false,
             moved: Vec::new(),
             jumped: Vec::new(),
         }
@@ -40,6 +44,12 @@ impl Upkeep {
     pub(crate) fn after_rebuild(&mut self, cost: f64) {
         self.built_cost = cost;
         self.preorder = true;
+    }
+
+    /// Records a change of the tree's shape (nodes linked differently).
+    pub(crate) fn reshaped(&mut self) {
+        self.preorder = false;
+        self.reshaped = true;
     }
 
     /// Bytes held.
@@ -68,7 +78,7 @@ impl<B: Bound> Tree<B> {
         while i < region.len() {
             let (x, size) = region[i];
             // A region of `size` internal nodes has `size + 1` atoms.
-            if placed + size as usize + 1 <= budget {
+            if placed + (size as usize) < budget {
                 placed += self.rebuild_region(x);
                 i += size as usize;
             } else {
@@ -155,7 +165,7 @@ impl<B: Bound> Tree<B> {
             // where the old one did for boxes; a sphere merge may not.
             self.enlarge_from(node, bound, false);
         }
-        self.upkeep.preorder = false;
+        self.upkeep.reshaped();
         atoms.len()
     }
 }

@@ -15,12 +15,12 @@ impl<B: Bound> Tree<B> {
     pub fn validate(&self) -> Result<(), Violation> {
         let recorded = self.leaf_parents.iter().filter(|&&p| p != NONE).count();
         if self.root == Ref::NONE {
-            return self.check_counts(0, 0, recorded);
+            return self.check_counts(0, recorded);
         }
         self.check_bound(Slot::Root, &self.root_bound)?;
         if self.root.is_leaf() {
             self.check_hangs(self.root, Slot::Root)?;
-            return self.check_counts(1, 0, recorded);
+            return self.check_counts(1, recorded);
         }
         let free = self.free_list()?;
         let mut seen = vec![false; self.nodes.len()];
@@ -120,7 +120,7 @@ impl<B: Bound> Tree<B> {
     }
 
     /// The counts of a tree with no internal node in use.
-    fn check_counts(&self, leaves: usize, _: usize, recorded: usize) -> Result<(), Violation> {
+    fn check_counts(&self, leaves: usize, recorded: usize) -> Result<(), Violation> {
         if leaves != self.len || leaves != recorded {
             return Err(Violation::LeafCount { reached: leaves, recorded });
         }

@@ -120,6 +120,7 @@ fn extreme_but_finite_bounds_work() {
         Aabb::new(Vec3::splat(1e30), Vec3::splat(1e30)),
         Aabb::new(Vec3::ZERO, Vec3::ZERO),
         Aabb::new(Vec3::splat(-1e-30), Vec3::ZERO),
+        Aabb::new(Vec3::splat(1e38), Vec3::splat(3e38)),
     ];
     let mut tree = Tree::new();
     for (i, b) in bounds.iter().enumerate() {
@@ -128,10 +129,14 @@ fn extreme_but_finite_bounds_work() {
     }
     let mut pairs = tree.pairs();
     pairs.sort_unstable();
-    // Box 0 holds all; the point at 0 touches [-1e-30, 0]; [1e-30, 2e-30] touches neither.
-    assert_eq!(pairs, vec![(0, 1), (0, 2), (0, 3), (0, 4), (3, 4)]);
+    // Box 0 holds all; the point at 0 touches [-1e-30, 0]; [1e-30, 2e-30]
+    // touches neither; [1e38, 3e38] only box 0.
+    assert_eq!(pairs, vec![(0, 1), (0, 2), (0, 3), (0, 4), (0, 5), (3, 4)]);
     tree.update(&bounds.map(|b| Aabb::new(b.min * 0.5, b.max * 0.5))).unwrap();
     tree.validate().unwrap();
     tree.rebuild();
     tree.validate().unwrap();
+    let mut pairs = tree.pairs();
+    pairs.sort_unstable();
+    assert_eq!(pairs, vec![(0, 1), (0, 2), (0, 3), (0, 4), (0, 5), (3, 4)]);
 }

@@ -38,6 +38,8 @@ enum Op<B> {
         max_t: Option<u8>,
     },
     Cross(Vec<B>),
+    /// Brings the pair set up to date (it may skip several steps).
+    Sync,
 }
 
 fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
@@ -56,6 +58,7 @@ fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
         1 => (prop::array::uniform3(-4i8..16), prop::array::uniform3(-3i8..=3), prop::option::of(0u8..20))
             .prop_map(|(origin, direction, max_t)| Op::Cast { origin, direction, max_t }),
         1 => prop::collection::vec(any_bound::<B>(), 0..12).prop_map(Op::Cross),
+        6 => Just(Op::Sync),
     ]
 }
 
@@ -136,6 +139,7 @@ impl<B: TestBound> Check<B> {
                 prop_assert_eq!(got, want);
             }
             Op::Cast { origin, direction, max_t } => self.cast(origin, direction, *max_t)?,
+            Op::Sync => self.sync()?,
             Op::Cross(other) => {
                 let stat = Tree::from_bounds(other).unwrap();
                 let theirs: Vec<(u32, B)> =
@@ -219,7 +223,7 @@ impl<B: TestBound> Check<B> {
             hits.iter().copied().min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))
         };
         prop_assert_eq!(self.tree.ray_cast(&ray, max_t, |_, t| Some(t)), nearest(&want));
-        let body = |id: u32, t: f32| (id % 2 == 0).then_some(t + id as f32 * 0.25);
+        let body = |id: u32, t: f32| id.is_multiple_of(2).then_some(t + id as f32 * 0.25);
         let bodies: Vec<(u32, f32)> = want
             .iter()
             .filter_map(|&(id, t)| body(id, t).filter(|&d| d <= max_t).map(|d| (id, d)))
@@ -243,6 +247,13 @@ impl<B: TestBound> Check<B> {
         prop_assert!(got.iter().all(|(a, b)| a < b));
         got.sort_unstable();
         prop_assert_eq!(&got, &want);
+        Ok(())
+    }
+
+    /// The pair set against the brute-force pairs now, and its events against
+    /// the difference from the pairs at the previous sync.
+    fn sync(&mut self) -> Result<(), TestCaseError> {
+        let want = brute_pairs(&self.leaves());
         self.set.update(&mut self.tree);
         prop_assert_eq!(self.set.pairs(), &want[..]);
         let began: Vec<_> =
@@ -261,11 +272,11 @@ fn run<B: TestBound>(config: Config, ops: &[Op<B>]) -> Result<(), TestCaseError>
     for op in ops {
         check.apply(op)?;
     }
-    Ok(())
+    check.sync()
 }
 
 proptest! {
-    #![proptest_config(ProptestConfig::with_cases(3000))]
+    #![proptest_config(ProptestConfig::with_cases(8000))]
 
     #[test]
     fn aabb_tree_matches_brute_force(config in config(), ops in prop::collection::vec(op::<Aabb>(), 1..60)) {

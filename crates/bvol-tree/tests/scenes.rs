@@ -48,6 +48,15 @@ impl<B: TestBound> Scene<B> {
         }
     }
 
+    /// Makes every hundredth body 20 times larger.
+    fn mixed(mut self) -> Self {
+        for i in (0..self.bounds.len()).step_by(100) {
+            let b = Self::random(&mut self.rng, self.world);
+            self.bounds[i] = B::make(b.center() - Vec3::splat(10.0), Vec3::splat(20.0));
+        }
+        self
+    }
+
     fn leaves(&self) -> Vec<(u32, B)> {
         self.bounds.iter().enumerate().map(|(i, b)| (i as u32, *b)).collect()
     }
@@ -56,7 +65,10 @@ impl<B: TestBound> Scene<B> {
 /// Runs `frames` frames alternating heavy and light motion, checking the tree
 /// and the pair set against brute force after every frame.
 fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
-    let mut scene = Scene::<B>::new(n, 7);
+    run_scene(Scene::<B>::new(n, 7), frames, config);
+}
+
+fn run_scene<B: TestBound>(mut scene: Scene<B>, frames: usize, config: Config) {
     let mut tree = Tree::with_config(config);
     let mut set = PairSet::new();
     let mut last: Vec<(u32, u32)> = Vec::new();
@@ -85,6 +97,24 @@ fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
 #[test]
 fn aabb_scene_matches_brute_force() {
     against_brute_force::<Aabb>(3000, 15, Config::default());
+}
+
+#[test]
+fn mixed_sizes_match_brute_force() {
+    // Large leaves are kept out of the build's Morton clusters.
+    run_scene(Scene::<Aabb>::new(4000, 5).mixed(), 6, Config::default());
+    run_scene(Scene::<Sphere>::new(2000, 6).mixed(), 4, Config::default());
+}
+
+#[test]
+fn world_sized_leaves_match_brute_force() {
+    // Two leaves covering everything: their searches against the other
+    // 12 000 leaves are wide enough to be split across tasks.
+    let mut scene = Scene::<Aabb>::new(12_000, 8);
+    for i in [0, 6000] {
+        scene.bounds[i] = Aabb::new(Vec3::splat(-1.0), Vec3::splat(scene.world + 1.0));
+    }
+    run_scene(scene, 2, Config::default());
 }
 
 #[test]
@@ -125,7 +155,9 @@ fn results_do_not_depend_on_the_thread_count() {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
-            let mut scene = Scene::<Aabb>::new(20_000, 11);
+            let mut scene = Scene::<Aabb>::new(20_000, 11).mixed();
+            // A leaf covering everything: its search is split across tasks.
+            scene.bounds[1] = Aabb::new(Vec3::splat(-1.0), Vec3::splat(scene.world + 1.0));
             let stat = Tree::from_bounds(&Scene::<Aabb>::new(3000, 12).bounds).unwrap();
             let mut tree = Tree::new();
             let mut set = PairSet::new();
