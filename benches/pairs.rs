@@ -4,7 +4,7 @@
 //! optimize_incremental, refit and traverse_bvtt_single_tree) and, for small N,
 //! brute force. Every method's pairs are checked equal before timing.
 //!
-//! `cargo bench --bench pairs`; N from `BVOL_BENCH_N` (default 100 000); one thread.
+//! `cargo bench --bench pairs`; N from `BVOL_BENCH_N` (default 100 000); every method on one thread.
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
@@ -23,20 +23,33 @@ trait Broadphase {
     fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>);
 }
 
-/// bvol's dynamic tree.
-#[derive(Default)]
-struct BvolTree(Option<Tree<Aabb>>);
+/// bvol's dynamic tree, on one thread like the others (its builds and pair
+/// search would otherwise use rayon's global pool).
+struct BvolTree {
+    tree: Option<Tree<Aabb>>,
+    one_thread: rayon::ThreadPool,
+}
+
+impl Default for BvolTree {
+    fn default() -> Self {
+        let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
+        BvolTree { tree: None, one_thread }
+    }
+}
 
 impl Broadphase for BvolTree {
     fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        let tree = match &mut self.0 {
-            Some(tree) => {
-                tree.update(boxes).expect("valid boxes");
-                tree
-            }
-            None => self.0.insert(Tree::from_bounds(boxes).expect("valid boxes")),
-        };
-        tree.pairs_into(pairs);
+        let slot = &mut self.tree;
+        self.one_thread.install(|| {
+            let tree = match slot {
+                Some(tree) => {
+                    tree.update(boxes).expect("valid boxes");
+                    tree
+                }
+                None => slot.insert(Tree::from_bounds(boxes).expect("valid boxes")),
+            };
+            tree.pairs_into(pairs);
+        });
     }
 }
 

@@ -13,7 +13,7 @@ use std::time::Duration;
 
 use bvol_tree::{Config, PairSet, Tree};
 use bvol_volumes::Aabb;
-use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
+use criterion::{Bencher, BenchmarkId, Criterion, criterion_group, criterion_main};
 use glam::Vec3;
 use rand::rngs::SmallRng;
 use rand::{RngExt, SeedableRng};
@@ -64,6 +64,18 @@ fn replay(k: usize) -> usize {
     if k < FRAMES { k } else { period - k }
 }
 
+/// Each iteration: the next frame's update, then the pair set's.
+fn with_pair_set(b: &mut Bencher, mut tree: Tree<Aabb>, frames: &[Vec<Aabb>]) {
+    let mut set = PairSet::new();
+    let mut k = 0;
+    b.iter(|| {
+        k += 1;
+        tree.update(&frames[replay(k)]).unwrap();
+        set.update(&mut tree);
+        black_box(set.pairs().len())
+    })
+}
+
 fn frames(c: &mut Criterion) {
     let scenes =
         [("uniform", scene(1.0, 0.0)), ("teleport", scene(1.0, 0.01)), ("rest", scene(0.001, 0.0))];
@@ -87,17 +99,7 @@ fn frames(c: &mut Criterion) {
                 })
             });
             group.bench_function(BenchmarkId::new("update+pair_set", threads), |b| {
-                pool.install(|| {
-                    let mut tree = Tree::from_bounds(&frames[0]).unwrap();
-                    let mut set = PairSet::new();
-                    let mut k = 0;
-                    b.iter(|| {
-                        k += 1;
-                        tree.update(&frames[replay(k)]).unwrap();
-                        set.update(&mut tree);
-                        black_box(set.pairs().len())
-                    })
-                })
+                pool.install(|| with_pair_set(b, Tree::from_bounds(&frames[0]).unwrap(), frames))
             });
         }
         group.finish();
@@ -121,15 +123,7 @@ fn paths(c: &mut Criterion) {
             let config = Config { refit_fraction, ..Config::default() };
             group.bench_function(BenchmarkId::new(path, moving), |b| {
                 let leaves = frames[0].iter().enumerate().map(|(i, b)| (i as u32, *b));
-                let mut tree = Tree::build(config, leaves).unwrap();
-                let mut set = PairSet::new();
-                let mut k = 0;
-                b.iter(|| {
-                    k += 1;
-                    tree.update(&frames[replay(k)]).unwrap();
-                    set.update(&mut tree);
-                    black_box(set.pairs().len())
-                })
+                with_pair_set(b, Tree::build(config, leaves).unwrap(), &frames)
             });
         }
     }
