@@ -36,6 +36,13 @@ impl Aabb {
         Aabb { min, max }
     }
 
+    /// The box around f64 points, rounded outward to f32.
+    pub(crate) fn around_f64(points: &[DVec3]) -> Aabb {
+        let lo = points.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
+        let hi = points.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
+        Aabb::from_f64_outward(lo, hi)
+    }
+
     /// The box of f64 corners, rounded outward to f32.
     pub(crate) fn from_f64_outward(min: DVec3, max: DVec3) -> Aabb {
         Aabb {

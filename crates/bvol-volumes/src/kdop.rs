@@ -106,10 +106,7 @@ impl<const N: usize> Kdop<N> {
 
     /// The tight box around the polytope, rounded outward.
     pub fn aabb(&self) -> Aabb {
-        let v = self.vertices_f64();
-        let lo = v.iter().fold(DVec3::INFINITY, |a, &p| a.min(p));
-        let hi = v.iter().fold(DVec3::NEG_INFINITY, |a, &p| a.max(p));
-        Aabb::from_f64_outward(lo, hi)
+        Aabb::around_f64(&self.vertices_f64())
     }
 
     /// Volume of the polytope: the sum over faces of area x distance from an

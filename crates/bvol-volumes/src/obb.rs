@@ -160,10 +160,7 @@ impl Obb {
 
     /// The tight box around this box, rounded outward.
     pub fn aabb(&self) -> Aabb {
-        let corners = self.corners_f64();
-        let lo = corners.iter().fold(DVec3::INFINITY, |a, &c| a.min(c));
-        let hi = corners.iter().fold(DVec3::NEG_INFINITY, |a, &c| a.max(c));
-        Aabb::from_f64_outward(lo, hi)
+        Aabb::around_f64(&self.corners_f64())
     }
 
     /// Whether two boxes overlap or touch: the 15-axis separating-axis test
