@@ -1,10 +1,41 @@
 //! bvol: collision detection for rigid bodies.
 //!
-//! A body carries a bounding sphere and an oriented bounding box fitted to its
-//! mesh; each frame these move with the body, merge into a bounding-volume tree,
-//! and separating-axis tests decide the candidate pairs. This crate is the
-//! engine's face; the bounding volumes live in [`volumes`] (the `bvol-volumes`
-//! crate), re-exported here.
+//! A body carries a bounding sphere and an oriented bounding box (OBB) fitted
+//! to its shape; each frame they move with the body, merge into a bounding-
+//! volume tree, the tree yields candidate pairs, and each pair goes through the
+//! sphere test, the OBB test and a separating-axis test of the convex hulls,
+//! which says how the bodies touch. A simulation embeds a [`World`]:
+//!
+//! ```
+//! use std::sync::Arc;
+//! use bvol::volumes::Pose;
+//! use bvol::{BodyDesc, BodyKind, EventKind, Shape, World};
+//! use glam::{Quat, Vec3};
+//!
+//! let mut world = World::new();
+//! let floor = Arc::new(Shape::cuboid(Vec3::new(10.0, 0.5, 10.0))?);
+//! let ball = Arc::new(Shape::ball(0.5)?);
+//! world.add_body(BodyDesc::new(floor, Pose::IDENTITY).with_kind(BodyKind::Static))?;
+//! let body = world.add_body(BodyDesc::new(ball, Pose::new(Vec3::Y * 2.0, Quat::IDENTITY)))?;
+//! let mut touched = 0;
+//! for step in 0..20 {
+//!     let height = 2.0 - 0.1 * step as f32; // the simulation's own motion
+//!     world.set_poses(&[body], &[Pose::new(Vec3::Y * height, Quat::IDENTITY)])?;
+//!     world.update();
+//!     for event in world.events().iter().filter(|e| e.kind == EventKind::Began) {
+//!         let contact = event.contact.expect("a contact that began has one");
+//!         assert!(height <= 1.0 && contact.normal.y > 0.99); // from the floor up
+//!         touched += 1;
+//!     }
+//! }
+//! assert_eq!(touched, 1);
+//! println!("{:?}", world.stats()); // pairs and time of each stage
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! The parts are crates of their own, re-exported here: [`volumes`] (bounding
+//! volumes, fitting, the convex hull), [`tree`] (the dynamic tree) and
+//! [`narrow`] (the separating-axis tests). Fitting alone:
 //!
 //! ```
 //! use bvol::volumes::{Obb, ObbMethod, Sphere, SphereMethod};
@@ -18,12 +49,22 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod body;
 mod digest;
+mod frame;
 mod mesh;
 pub mod scenes;
+mod shape;
 mod trace;
+mod world;
 
+pub use body::{BodyDesc, BodyId, BodyKind, WorldError};
+pub use bvol_narrow as narrow;
+pub use bvol_tree as tree;
 pub use bvol_volumes as volumes;
 pub use digest::PairDigest;
+pub use frame::{ContactEvent, EventKind, FrameStats};
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
+pub use shape::{FitOptions, HullPart, Part, Shape, ShapeError};
 pub use trace::{BoxTrace, TraceError, TraceWriter};
+pub use world::{RayHit, World};

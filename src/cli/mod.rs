@@ -1,6 +1,7 @@
 //! Command-line arguments and dispatch.
 
 mod bench;
+mod bench_world;
 mod fit;
 
 use std::path::PathBuf;
@@ -36,6 +37,9 @@ enum Bench {
     /// Broadphase: tree update + every overlapping pair, per frame, on a
     /// generated scene or a box trace; one line in the box-trace bench format.
     Pairs(bench::PairsArgs),
+    /// The whole frame of a world of mesh-shaped bodies: pairs and time of
+    /// each stage (tree candidates, after spheres, after OBBs, touching).
+    World(bench_world::WorldArgs),
 }
 
 /// Runs a command; the error is one line for the user.
@@ -43,5 +47,6 @@ pub fn run(args: Args) -> Result<(), String> {
     match args.command {
         Command::Fit { mesh, json } => fit::run(&mesh, json),
         Command::Bench(Bench::Pairs(args)) => bench::run(args),
+        Command::Bench(Bench::World(args)) => bench_world::run(args),
     }
 }

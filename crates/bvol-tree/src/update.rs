@@ -88,13 +88,73 @@ impl<B: Bound> Tree<B> {
         self.refit_pass(None, &mut scratch, &mut Vec::new());
     }
 
+    /// Brings the tree up to date with the leaves that moved: `moved[k]` is
+    /// `(id, new bound)`, every id in the tree. For a caller that knows what
+    /// moved (a world whose tree holds only some of its bodies): the same
+    /// choice as [`Tree::update`] between per-leaf updates and one refit, by
+    /// the fraction moved, without reading the bounds of leaves that did not.
+    ///
+    /// Every id and bound is checked first: on error nothing has changed.
+    pub fn update_moved(&mut self, moved: &[(u32, B)]) -> Result<Frame, TreeError> {
+        for &(id, bound) in moved {
+            check_bound(id, &bound)?;
+            if !self.contains(id) {
+                return Err(TreeError::UnknownId { id });
+            }
+        }
+        let mut frame = Frame { moved: moved.len(), ..Frame::default() };
+        if (moved.len() as f32) < self.config.refit_fraction * self.len as f32 {
+            for &(id, bound) in moved {
+                if self.move_leaf(id, bound) == crate::Move::Reinserted {
+                    frame.reinserted += 1;
+                }
+                self.changes.mark(id);
+            }
+            frame.rebuilt = self.optimize();
+        } else {
+            let mut jumped = Vec::new();
+            for &(id, bound) in moved {
+                let p = self.leaf_parents[id as usize];
+                if p == ROOT {
+                    self.root_bound = bound;
+                    continue;
+                }
+                let node = &mut self.nodes[p as usize];
+                let old = &mut node.bounds[node.side_of(Ref::leaf(id))];
+                // A jump keeps its old bound for now, as in the full refit.
+                if bound.overlaps(old) { *old = bound } else { jumped.push((id, bound)) }
+            }
+            let cost = self.refit_pass(None, &mut Vec::new(), &mut Vec::new());
+            self.after_refit(&jumped, moved.iter().map(|m| m.0), cost, &mut frame);
+        }
+        self.upkeep.moved_fraction = frame.moved as f32 / self.len.max(1) as f32;
+        Ok(frame)
+    }
+
     /// The refit path of a frame.
     fn refit_frame(&mut self, bounds: &[B], frame: &mut Frame) {
         let mut moved = std::mem::take(&mut self.upkeep.moved);
         let mut jumped = std::mem::take(&mut self.upkeep.jumped);
         let cost = self.refit_pass(Some(bounds), &mut moved, &mut jumped);
-        frame.refit = true;
         frame.moved = moved.len();
+        let jumps: Vec<(u32, B)> = jumped.iter().map(|&id| (id, bounds[id as usize])).collect();
+        self.after_refit(&jumps, moved.iter().copied(), cost, frame);
+        moved.clear();
+        jumped.clear();
+        (self.upkeep.moved, self.upkeep.jumped) = (moved, jumped);
+    }
+
+    /// What follows a refit: leaves that `jumped` clear of their old bound
+    /// (which they kept) go where they now are, the `moved` ids are marked
+    /// for the pair set, and the tree is rebuilt if its `cost` drifted.
+    fn after_refit(
+        &mut self,
+        jumped: &[(u32, B)],
+        moved: impl ExactSizeIterator<Item = u32>,
+        cost: f64,
+        frame: &mut Frame,
+    ) {
+        frame.refit = true;
         frame.reinserted = jumped.len();
         // Leaves that jumped clear of their old bound: refit in place they
         // would stretch their ancestors across the gap, and every later pair
@@ -103,32 +163,28 @@ impl<B: Bound> Tree<B> {
         // faster than their size per frame), one rebuild is cheaper.
         let many = jumped.len() * JUMPS_FOR_REBUILD > self.len;
         if many {
-            for &id in &jumped {
+            for &(id, bound) in jumped {
                 let p = self.leaf_parents[id as usize];
                 let node = &mut self.nodes[p as usize];
-                node.bounds[node.side_of(Ref::leaf(id))] = bounds[id as usize];
+                node.bounds[node.side_of(Ref::leaf(id))] = bound;
             }
         } else {
-            for &id in &jumped {
+            for &(id, _) in jumped {
                 self.remove_leaf(id);
             }
-            for &id in &jumped {
-                let bound = bounds[id as usize];
+            for &(id, bound) in jumped {
                 self.insert_leaf(id, bound, &bound);
             }
         }
         if moved.len() * 2 > self.len {
             self.changes.mark_all();
         } else {
-            moved.iter().for_each(|&id| self.changes.mark(id));
+            moved.for_each(|id| self.changes.mark(id));
         }
         if many || cost > self.upkeep.built_cost * (1.0 + self.config.drift) {
             self.rebuild();
             frame.rebuilt = self.len;
         }
-        moved.clear();
-        jumped.clear();
-        (self.upkeep.moved, self.upkeep.jumped) = (moved, jumped);
     }
 
     /// The ids `< bounds.len()` whose bound differs from the tree's, in node

@@ -27,6 +27,12 @@ enum Op<B> {
         percent: u8,
         seed: u64,
     },
+    /// The leaves that moved handed over by id: each present leaf moves
+    /// with probability `percent`%, a tenth of those teleport.
+    Moved {
+        percent: u8,
+        seed: u64,
+    },
     Rebuild,
     Refit,
     Optimize,
@@ -51,6 +57,7 @@ fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
         6 => (id.clone(), small).prop_map(|(i, d)| Op::Nudge(i, d)),
         2 => (id.clone(), any_bound::<B>()).prop_map(|(i, b)| Op::Set(i, b)),
         3 => (0..=IDS, 0u8..=100, any::<u64>()).prop_map(|(len, percent, seed)| Op::Frame { len, percent, seed }),
+        3 => (0u8..=100, any::<u64>()).prop_map(|(percent, seed)| Op::Moved { percent, seed }),
         1 => Just(Op::Rebuild),
         1 => Just(Op::Refit),
         1 => Just(Op::Optimize),
@@ -60,6 +67,16 @@ fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
         1 => prop::collection::vec(any_bound::<B>(), 0..12).prop_map(Op::Cross),
         6 => Just(Op::Sync),
     ]
+}
+
+/// A leaf's bound after a random move: mostly a small shift, a tenth of the
+/// time a jump far away.
+fn moved<B: TestBound>(b: B, rng: &mut Mix) -> B {
+    if rng.below(10) == 0 {
+        b.shifted(Vec3::new(rng.range(-40.0, 40.0), rng.range(-40.0, 40.0), 0.0))
+    } else {
+        b.shifted(Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0)))
+    }
 }
 
 fn config() -> impl Strategy<Value = Config> {
@@ -125,6 +142,7 @@ impl<B: TestBound> Check<B> {
             }
             Op::Set(id, b) => self.set_bound(*id, |_| *b)?,
             Op::Frame { len, percent, seed } => self.frame(*len, *percent, *seed)?,
+            Op::Moved { percent, seed } => self.moved(*percent, *seed)?,
             Op::Rebuild => self.tree.rebuild(),
             Op::Refit => self.tree.refit(),
             Op::Optimize => {
@@ -176,17 +194,7 @@ impl<B: TestBound> Check<B> {
         let mut rng = Mix(seed);
         let bounds: Vec<B> = (0..len as usize)
             .map(|i| match self.model[i] {
-                Some(b) if rng.below(100) < percent as u64 => {
-                    if rng.below(10) == 0 {
-                        b.shifted(Vec3::new(rng.range(-40.0, 40.0), rng.range(-40.0, 40.0), 0.0))
-                    } else {
-                        b.shifted(Vec3::new(
-                            rng.range(-1.0, 1.0),
-                            rng.range(-1.0, 1.0),
-                            rng.range(-1.0, 1.0),
-                        ))
-                    }
-                }
+                Some(b) if rng.below(100) < percent as u64 => moved(b, &mut rng),
                 Some(b) => b,
                 None => B::make(
                     Vec3::new(rng.range(0.0, 12.0), rng.range(0.0, 12.0), rng.range(0.0, 12.0)),
@@ -199,6 +207,29 @@ impl<B: TestBound> Check<B> {
         prop_assert_eq!(frame.inserted, inserted);
         for (i, b) in bounds.iter().enumerate() {
             self.model[i] = Some(*b);
+        }
+        Ok(())
+    }
+
+    fn moved(&mut self, percent: u8, seed: u64) -> Result<(), TestCaseError> {
+        let mut rng = Mix(seed);
+        let mut moves = Vec::new();
+        for (i, b) in self.model.iter().enumerate() {
+            if let Some(b) = b
+                && rng.below(100) < percent as u64
+            {
+                moves.push((i as u32, moved(*b, &mut rng)));
+            }
+        }
+        let frame = self.tree.update_moved(&moves).unwrap();
+        prop_assert_eq!(frame.moved, moves.len());
+        for (id, b) in moves {
+            self.model[id as usize] = Some(b);
+        }
+        // An absent id is an error that changes nothing.
+        if let Some(absent) = (0..IDS).find(|&i| self.model[i as usize].is_none()) {
+            let any = B::make(Vec3::ZERO, Vec3::ONE);
+            prop_assert!(self.tree.update_moved(&[(absent, any)]).is_err());
         }
         Ok(())
     }

@@ -2,6 +2,7 @@
 
 use glam::{DMat3, DQuat, DVec3, Mat3, Vec3};
 
+use crate::pose::ROTATION_ERROR;
 use crate::ray::{Ray, SlabClip, ray_f64};
 use crate::round::up_safe;
 use crate::{Aabb, FitError, Pose, Sphere};
@@ -127,20 +128,20 @@ impl Obb {
         })
     }
 
-    /// The box moved by a rigid pose. Axes and centre are rotated in f64 and
-    /// rounded; the half lengths grow by a bound on that rounding, so the exact
-    /// image of the old box stays inside.
+    /// The box moved by a rigid pose, in f32 (this runs for every moved body
+    /// every frame). The half lengths grow by bounds on the rounding of the
+    /// new centre and of the rotated axes (an axis off by `e` moves a point
+    /// of the box by at most `|e| |h|` along it), so the exact image of the
+    /// old box stays inside.
     pub fn transformed(&self, pose: &Pose) -> Obb {
-        let r = pose.rotation_f64();
-        let center = pose.apply_f64(self.center.as_dvec3());
-        let axes = (r * self.axes.as_dmat3()).as_mat3();
-        let h = self.half_extents.as_dvec3();
-        let c = center.as_vec3();
-        let slip = (c.as_dvec3() - center).length();
-        let pad =
-            slip + 8.0 * f32::EPSILON as f64 * (h.length() + c.as_dvec3().abs().max_element());
-        let half_extents = Vec3::new(up_safe(h.x + pad), up_safe(h.y + pad), up_safe(h.z + pad));
-        Obb { center: c, axes, half_extents }
+        let r = pose.rotation_f32();
+        let (center, slip) = pose.apply_f32(&r, self.center);
+        let axes = r * self.axes;
+        let h = self.half_extents;
+        let turn = 4.0 * (ROTATION_ERROR + 3.0 * f32::EPSILON) * h.element_sum();
+        let pad = Vec3::splat(slip + turn);
+        let half_extents = (h + pad).map(f32::next_up);
+        Obb { center, axes, half_extents }
     }
 
     /// A box holding both: centre between them, axes from the halfway rotation of

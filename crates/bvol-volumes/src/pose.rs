@@ -2,6 +2,12 @@
 
 use glam::{DMat3, DVec3, Quat, Vec3};
 
+/// A bound on the error of each entry of [`Pose::rotation_f32`], in units of
+/// f32's epsilon: the normalisation errs by about 2, each entry of the
+/// matrix (sums of three products of two components) by about 4 more, and
+/// the rotation's entries are at most 1. 16 leaves room to spare.
+pub(crate) const ROTATION_ERROR: f32 = 16.0 * f32::EPSILON;
+
 /// A rigid pose: points map as `rotation * p + position`.
 ///
 /// ```
@@ -57,6 +63,28 @@ impl Pose {
     /// The rotation as an exactly orthonormal f64 matrix (the quaternion normalised in f64).
     pub(crate) fn rotation_f64(&self) -> DMat3 {
         DMat3::from_quat(self.rotation.as_dquat().normalize())
+    }
+
+    /// The rotation as an f32 matrix, from the quaternion normalised in f32:
+    /// each entry within [`ROTATION_ERROR`] of the exact rotation's.
+    #[inline]
+    pub(crate) fn rotation_f32(&self) -> glam::Mat3 {
+        glam::Mat3::from_quat(self.rotation.normalize())
+    }
+
+    /// The image of a local point in f32 under rotation `r` (this pose's
+    /// [`rotation_f32`](Self::rotation_f32)), and a bound on its distance
+    /// from the exact image: the rotation's error on the point's components,
+    /// the rounding of the product and of the sum (twice the per-component
+    /// bound covers the Euclidean norm and the rounding of the bound itself).
+    #[inline]
+    pub(crate) fn apply_f32(&self, r: &glam::Mat3, p: Vec3) -> (Vec3, f32) {
+        let image = *r * p + self.position;
+        let eps = f32::EPSILON;
+        let slip = 2.0
+            * ((ROTATION_ERROR + 5.0 * eps) * p.abs().element_sum()
+                + eps * self.position.abs().element_sum());
+        (image, slip)
     }
 
     /// The exact image of a local point, in f64.

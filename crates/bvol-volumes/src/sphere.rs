@@ -59,13 +59,13 @@ impl Sphere {
         (4.0 * std::f64::consts::PI * r * r) as f32
     }
 
-    /// The sphere moved by a rigid pose. The radius grows by the rounding of the
-    /// new centre, so the exact image of the old sphere stays inside.
+    /// The sphere moved by a rigid pose, in f32 (a few dozen operations: this
+    /// runs for every moved body every frame). The radius grows by a bound on
+    /// the rounding of the new centre, so the exact image of the old sphere
+    /// stays inside.
     pub fn transformed(&self, pose: &Pose) -> Sphere {
-        let exact = pose.apply_f64(self.center.as_dvec3());
-        let c = exact.as_vec3();
-        let slip = (c.as_dvec3() - exact).length();
-        Sphere { center: c, radius: up_safe(self.radius as f64 + slip) }
+        let (center, slip) = pose.apply_f32(&pose.rotation_f32(), self.center);
+        Sphere { center, radius: (self.radius + slip).next_up() }
     }
 
     /// The smallest sphere holding both: the larger one if it holds the other,

@@ -1,0 +1,97 @@
+//! What a pair test answers: apart along an axis, or touching with a contact manifold.
+
+use glam::{DVec3, Vec3};
+
+use crate::frame::Frame;
+use crate::manifold::Manifold;
+
+/// The most points a [`Contact`] holds: enough to hold a face resting on a face.
+pub(crate) const MAX_POINTS: usize = 4;
+
+/// One point of a contact manifold.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ContactPoint {
+    /// World position, midway between the two surfaces.
+    pub position: Vec3,
+    /// Penetration of this point along the contact normal, `>= 0`.
+    pub depth: f32,
+}
+
+/// How two touching bodies touch: the normal, the depth and up to four points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Contact {
+    /// Unit world direction pointing from A to B.
+    pub normal: Vec3,
+    /// `>= 0`: the distance B must move along `normal` (or A against it) to
+    /// separate them.
+    pub depth: f32,
+    points: [ContactPoint; MAX_POINTS],
+    count: u8,
+}
+
+impl Contact {
+    /// A contact from its normal, depth and points (at most [`MAX_POINTS`] are kept).
+    pub(crate) fn new(normal: Vec3, depth: f32, points: &[ContactPoint]) -> Contact {
+        let count = points.len().min(MAX_POINTS);
+        let mut all = [ContactPoint::default(); MAX_POINTS];
+        all[..count].copy_from_slice(&points[..count]);
+        Contact { normal, depth, points: all, count: count as u8 }
+    }
+
+    /// The contact points: one to four.
+    pub fn points(&self) -> &[ContactPoint] {
+        &self.points[..self.count as usize]
+    }
+}
+
+/// The answer of a pair test.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Collision {
+    /// The bodies are apart: `axis` separates them.
+    Separated {
+        /// Unit world direction from A to B along which they are apart.
+        axis: Vec3,
+        /// The gap along `axis`, `> 0`: a lower bound of their distance.
+        distance: f32,
+    },
+    /// The bodies overlap or touch exactly (depth 0).
+    Touching(Contact),
+}
+
+impl Collision {
+    /// Apart along `axis` (unit, world space, from A to B) by `gap > 0`, in f32:
+    /// a gap too small for f32 is kept positive.
+    pub(crate) fn separated(axis: DVec3, gap: f64) -> Collision {
+        Collision::Separated { axis: axis.as_vec3(), distance: (gap as f32).max(f32::MIN_POSITIVE) }
+    }
+
+    /// Touching along `normal` (unit, world space, from A to B) by `depth`, with
+    /// the manifold's points mapped to the world by `frame`.
+    pub(crate) fn touching(
+        normal: DVec3,
+        depth: f64,
+        manifold: &Manifold,
+        frame: &Frame,
+    ) -> Collision {
+        let mut points = [ContactPoint::default(); MAX_POINTS];
+        for (out, &(p, d)) in points.iter_mut().zip(&manifold.points[..manifold.count]) {
+            *out = ContactPoint { position: frame.apply(p).as_vec3(), depth: d as f32 };
+        }
+        let contact =
+            Contact::new(normal.as_vec3(), depth.max(0.0) as f32, &points[..manifold.count]);
+        Collision::Touching(contact)
+    }
+
+    /// Whether the bodies overlap or touch.
+    pub fn is_touching(&self) -> bool {
+        matches!(self, Collision::Touching(_))
+    }
+
+    /// The contact, when they touch.
+    pub fn contact(&self) -> Option<&Contact> {
+        match self {
+            Collision::Touching(c) => Some(c),
+            Collision::Separated { .. } => None,
+        }
+    }
+}

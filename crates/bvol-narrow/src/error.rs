@@ -1,0 +1,93 @@
+//! Typed errors: bad shapes when they are built, bad poses and shapes when they are tested.
+
+use std::fmt;
+
+/// Why a [`Polyhedron`](crate::Polyhedron) could not be built.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ShapeError {
+    /// No points were given.
+    Empty,
+    /// The point at `index` has a NaN or infinite coordinate.
+    NonFinite {
+        /// Position of the offending point in the input slice.
+        index: usize,
+    },
+    /// The points do not span a solid: fewer than 4 of them are non-coplanar.
+    Degenerate {
+        /// Dimension of their hull: 0 (one point), 1 (a segment) or 2 (flat).
+        dimension: u8,
+    },
+    /// A cuboid's half extents are not all finite and positive.
+    BadHalfExtents,
+}
+
+impl fmt::Display for ShapeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShapeError::Empty => write!(f, "no points to build a polyhedron from"),
+            ShapeError::NonFinite { index } => {
+                write!(f, "point {index} has a NaN or infinite coordinate")
+            }
+            ShapeError::Degenerate { dimension } => write!(
+                f,
+                "the points span {dimension} dimension(s), not a solid: a polyhedron needs 4 non-coplanar points"
+            ),
+            ShapeError::BadHalfExtents => {
+                write!(f, "cuboid half extents must be finite and greater than zero")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ShapeError {}
+
+/// Which argument of a pair test an error is about.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Body {
+    /// The first shape and pose.
+    A,
+    /// The second shape and pose.
+    B,
+}
+
+impl fmt::Display for Body {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(match self {
+            Body::A => "A",
+            Body::B => "B",
+        })
+    }
+}
+
+/// Why a pair test could not run.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum NarrowError {
+    /// The pose of `body` has a NaN or infinite component, or a zero rotation.
+    NonFinitePose {
+        /// The body whose pose is bad.
+        body: Body,
+    },
+    /// The shape of `body` (a box or a sphere) has a NaN or infinite field, or a
+    /// negative half extent or radius.
+    NonFiniteShape {
+        /// The body whose shape is bad.
+        body: Body,
+    },
+}
+
+impl fmt::Display for NarrowError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            NarrowError::NonFinitePose { body } => {
+                write!(f, "the pose of body {body} is not finite (or its rotation is zero)")
+            }
+            NarrowError::NonFiniteShape { body } => {
+                write!(f, "the shape of body {body} has a non-finite field or a negative size")
+            }
+        }
+    }
+}
+
+impl std::error::Error for NarrowError {}

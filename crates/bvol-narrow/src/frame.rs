@@ -1,0 +1,68 @@
+//! Rigid frames in f64: where a shape's local space sits, and one shape's space
+//! seen from another's.
+
+use bvol_volumes::Pose;
+use glam::{DMat3, DVec3, Mat3, Vec3};
+
+use crate::{Body, NarrowError};
+
+/// A rigid map `x -> rotation * x + translation`, with an orthonormal f64 rotation.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Frame {
+    /// Orthonormal rotation.
+    pub rotation: DMat3,
+    /// Translation, applied after the rotation.
+    pub translation: DVec3,
+}
+
+impl Frame {
+    /// The map that leaves every point where it is.
+    pub const IDENTITY: Frame = Frame { rotation: DMat3::IDENTITY, translation: DVec3::ZERO };
+
+    /// The frame of a pose: its quaternion normalised in f64, so that the
+    /// rotation is orthonormal to f64 rounding whatever f32 rounding did to it.
+    pub fn of_pose(pose: &Pose, body: Body) -> Result<Frame, NarrowError> {
+        if !pose.is_finite() {
+            return Err(NarrowError::NonFinitePose { body });
+        }
+        // `is_finite` rejects a zero quaternion; in f64 the squares of f32
+        // components cannot underflow, so the length is not zero either.
+        let q = pose.rotation.as_dquat().normalize();
+        Ok(Frame { rotation: DMat3::from_quat(q), translation: pose.position.as_dvec3() })
+    }
+
+    /// This frame followed by a box's own placement inside it: `center` and the
+    /// columns of `axes`, made orthonormal by Gram-Schmidt (the first axis kept).
+    /// A box is symmetric, so a left-handed `axes` places the same box.
+    pub fn with_box(&self, center: Vec3, axes: Mat3) -> Frame {
+        let x = axes.x_axis.as_dvec3().try_normalize().unwrap_or(DVec3::X);
+        let y = axes.y_axis.as_dvec3();
+        let y = (y - x * x.dot(y)).try_normalize().unwrap_or_else(|| x.any_orthonormal_vector());
+        let local = DMat3::from_cols(x, y, x.cross(y));
+        Frame { rotation: self.rotation * local, translation: self.apply(center.as_dvec3()) }
+    }
+
+    /// Maps a point.
+    pub fn apply(&self, p: DVec3) -> DVec3 {
+        self.rotation * p + self.translation
+    }
+
+    /// Rotates a direction.
+    pub fn rotate(&self, v: DVec3) -> DVec3 {
+        self.rotation * v
+    }
+
+    /// Rotates a direction by the inverse rotation.
+    pub fn unrotate(&self, v: DVec3) -> DVec3 {
+        self.rotation.transpose() * v
+    }
+
+    /// The map from `other`'s local space to this frame's: `self^-1 * other`.
+    pub fn relative(&self, other: &Frame) -> Frame {
+        let r = self.rotation.transpose();
+        Frame {
+            rotation: r * other.rotation,
+            translation: r * (other.translation - self.translation),
+        }
+    }
+}

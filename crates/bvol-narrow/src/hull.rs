@@ -1,0 +1,278 @@
+//! Polyhedron against polyhedron: the separating-axis test with Gauss-map
+//! pruning, then the contact of the feature it picks.
+
+use glam::DVec3;
+
+use crate::convex::Convex;
+use crate::frame::Frame;
+use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
+use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, edge_query, face_query};
+use crate::warm::{Feature, WarmStart, retest};
+use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
+
+/// An edge contact is taken over a face contact only if its separation beats
+/// the face's by more than this (relative to the shapes' size), and a face of
+/// B over a face of A likewise. Resting contacts, where a face and an edge (or
+/// two faces) are equally deep up to rounding, then keep one manifold from
+/// frame to frame instead of flickering between them (Gregorius GDC 2013
+/// prefers faces by an absolute tolerance). Not relative to the depth, as
+/// Box2D's 0.98 is: that would report depths up to 2% above the least
+/// penetration, and the depth must be the least one to within 1e-4 of the
+/// shapes' size. A contact's depth is at most this much more than the least.
+const PREFER_ABS: f64 = 2e-5;
+
+/// Whether two convex polyhedra touch, and how.
+///
+/// The separating-axis test of Gregorius (GDC 2013): the face normals of A,
+/// then of B, then the common normals of the edge pairs whose Gauss-map arcs
+/// cross (found by walking A's arcs across B's Gauss map), stopping at the
+/// first axis that separates them. The line between the shapes' centres goes
+/// first: it separates most pairs that are apart, and its support points and
+/// gap bound the rest, so that most faces and arcs are skipped unsearched
+/// (see the queries). Everything is computed in A's space in f64, with B
+/// mapped in by one relative pose, so the decision near touching is exact to
+/// f64 rounding of the f32 input.
+///
+/// Apart: [`Collision::Separated`] with that axis and the gap along it (a
+/// lower bound of their distance). Touching: the axis of least penetration,
+/// preferring faces over edges and A's faces over B's within a small
+/// tolerance (5% and 2% of the depth, plus 1e-5 of the shapes' size), so
+/// resting contacts do not flicker; a face contact clips the incident face of
+/// the other shape against the reference face (up to 4 points), an edge
+/// contact has one point between the edges.
+///
+/// `warm` carries the deciding feature from call to call (see [`WarmStart`]);
+/// it makes apart pairs cheap and never changes whether a pair touches, nor
+/// any contact.
+///
+/// A pose with a NaN or infinite component (or a zero rotation) is
+/// [`NarrowError::NonFinitePose`].
+///
+/// ```
+/// use bvol_narrow::{Collision, Polyhedron, Pose, WarmStart, hull_hull};
+/// use glam::{Quat, Vec3};
+/// let cube = Polyhedron::cuboid(Vec3::splat(0.5))?;
+/// let (a, b) = (Pose::IDENTITY, Pose::new(Vec3::new(0.0, 0.9, 0.0), Quat::IDENTITY));
+/// let mut warm = WarmStart::default();
+/// let Collision::Touching(contact) = hull_hull(&cube, &a, &cube, &b, &mut warm)? else {
+///     panic!("the cubes overlap by 0.1");
+/// };
+/// assert_eq!(contact.normal, Vec3::Y);
+/// assert!((contact.depth - 0.1).abs() < 1e-6);
+/// assert_eq!(contact.points().len(), 4);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+pub fn hull_hull(
+    a: &Polyhedron,
+    pose_a: &Pose,
+    b: &Polyhedron,
+    pose_b: &Pose,
+    warm: &mut WarmStart,
+) -> Result<Collision, NarrowError> {
+    let frame_a = Frame::of_pose(pose_a, Body::A)?;
+    let frame_b = Frame::of_pose(pose_b, Body::B)?;
+    Ok(collide(a, &frame_a, b, &frame_b, warm))
+}
+
+/// [`hull_hull`] for any two convex shapes placed by f64 frames.
+pub(crate) fn collide<A: Convex, B: Convex>(
+    a: &A,
+    frame_a: &Frame,
+    b: &B,
+    frame_b: &Frame,
+    warm: &mut WarmStart,
+) -> Collision {
+    // B's space into A's.
+    let rel = frame_a.relative(frame_b);
+    if let Some((axis, gap)) = retest(warm.feature, a, frame_a, b, frame_b, &rel) {
+        return Collision::separated(frame_a.rotate(axis), gap);
+    }
+    let (feature, collision) = full_query(a, frame_a, b, frame_b, &rel);
+    warm.feature = feature;
+    collision
+}
+
+/// The full test, which reads no cache: the deciding feature and the answer.
+fn full_query<A: Convex, B: Convex>(
+    a: &A,
+    frame_a: &Frame,
+    b: &B,
+    frame_b: &Frame,
+    rel: &Frame,
+) -> (Feature, Collision) {
+    // The line between the centres first: it separates most pairs that are apart.
+    let centres = centre_axis(a, b, rel, None);
+    if let Some(c) = centres.filter(|c| c.gap > 0.0) {
+        let (support_a, support_b) = c.supports;
+        let feature = Feature::Centres { support_a, support_b };
+        return (feature, Collision::separated(frame_a.rotate(c.axis), c.gap));
+    }
+    let inv = &frame_b.relative(frame_a);
+    let pair = Pair { a, frame_a, b, frame_b, rel, inv };
+    // Touching or close. The greatest separation over the candidate axes is
+    // at least the gap along any axis, the centre line's included; the
+    // preferences pick a feature at most their slack below the greatest;
+    // so features below this floor can never be picked, and
+    // the queries need not find them (the answer is the same as if they did).
+    let slack = PREFER_ABS * a.size().max(b.size());
+    let c = centres.unwrap_or(AxisGap {
+        axis: DVec3::Y,
+        gap: f64::NEG_INFINITY,
+        high_a: a.inner_ball().0,
+        low_b: rel.apply(b.inner_ball().0),
+        supports: (0, 0),
+    });
+    let floor = c.gap - 2.0 * slack;
+    // Each face query starts from the face most facing the other shape, and
+    // the centre line's support points are the witnesses of the bounds.
+    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, c.low_b);
+    if face_a.separation > 0.0 {
+        return pair.separated(Choice::FaceA(face_a));
+    }
+    let first_b = b.face_seed(-rel.unrotate(c.axis));
+    let floor_b = floor.max(face_a.separation);
+    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(c.high_a));
+    if face_b.separation > 0.0 {
+        return pair.separated(Choice::FaceB(face_b));
+    }
+    let deepest_face = face_a.separation.max(face_b.separation);
+    let edge = edge_query(a, b, rel, floor.max(deepest_face), c.low_b);
+    if let Some(e) = edge.filter(|e| e.separation > 0.0) {
+        return pair.separated(Choice::Edges(e));
+    }
+    // Touching. The preferred feature gives the contact if its manifold has
+    // points; a preferred face may not be the axis of least penetration, and
+    // then its clipped face can lie wholly above the reference plane. The
+    // least penetration's own feature always touches along its axis.
+    let preferred = match edge {
+        Some(e) if e.separation > deepest_face + slack => Choice::Edges(e),
+        _ if face_b.separation > face_a.separation + slack => Choice::FaceB(face_b),
+        _ => Choice::FaceA(face_a),
+    };
+    let least = match edge {
+        Some(e) if e.separation > deepest_face => Choice::Edges(e),
+        _ if face_b.separation > face_a.separation => Choice::FaceB(face_b),
+        _ => Choice::FaceA(face_a),
+    };
+    pair.touching(preferred)
+        .or_else(|| pair.touching(least))
+        .unwrap_or_else(|| pair.touching_at_support(least))
+}
+
+/// A feature whose axis decides the test.
+#[derive(Clone, Copy, Debug)]
+enum Choice {
+    /// A face of A.
+    FaceA(FaceQuery),
+    /// A face of B.
+    FaceB(FaceQuery),
+    /// An edge of each.
+    Edges(EdgeQuery),
+}
+
+/// Two shapes placed in the world and seen from each other.
+struct Pair<'a, A, B> {
+    a: &'a A,
+    frame_a: &'a Frame,
+    b: &'a B,
+    frame_b: &'a Frame,
+    /// B's space into A's.
+    rel: &'a Frame,
+    /// A's space into B's.
+    inv: &'a Frame,
+}
+
+impl<A: Convex, B: Convex> Pair<'_, A, B> {
+    /// The cache entry of a choice.
+    fn feature(&self, choice: Choice) -> Feature {
+        match choice {
+            Choice::FaceA(q) => Feature::FaceA { face: q.face, support: q.support },
+            Choice::FaceB(q) => Feature::FaceB { face: q.face, support: q.support },
+            Choice::Edges(e) => Feature::Edges { edge_a: e.edge_a, half_edge_b: e.half_edge_b },
+        }
+    }
+
+    /// The choice's unit axis in the world, from A to B, and its separation.
+    fn axis(&self, choice: Choice) -> (DVec3, f64) {
+        match choice {
+            Choice::FaceA(q) => (self.frame_a.rotate(self.a.plane(q.face).normal), q.separation),
+            // B's outward normal points from B to A.
+            Choice::FaceB(q) => (-self.frame_b.rotate(self.b.plane(q.face).normal), q.separation),
+            Choice::Edges(e) => (self.frame_a.rotate(e.axis), e.separation),
+        }
+    }
+
+    /// Apart along the choice's axis.
+    fn separated(&self, choice: Choice) -> (Feature, Collision) {
+        let (axis, gap) = self.axis(choice);
+        (self.feature(choice), Collision::separated(axis, gap))
+    }
+
+    /// Touching along the choice's axis, with its manifold; `None` if a face's
+    /// clipped incident face has no point at or below the reference plane.
+    fn touching(&self, choice: Choice) -> Option<(Feature, Collision)> {
+        let (manifold, frame) = self.manifold(choice, false);
+        (manifold.count > 0).then(|| self.answer(choice, &manifold, frame))
+    }
+
+    /// Touching along a face's axis at the other shape's lowest vertex: for
+    /// when rounding leaves the clipped face of even the least penetration
+    /// just above its reference plane.
+    fn touching_at_support(&self, choice: Choice) -> (Feature, Collision) {
+        let (manifold, frame) = self.manifold(choice, true);
+        self.answer(choice, &manifold, frame)
+    }
+
+    /// The choice's manifold, in the space that the returned frame maps to
+    /// the world: for a face, the clipped incident face, or (`at_support`) the
+    /// other shape's lowest vertex alone; for an edge pair, its one point.
+    fn manifold(&self, choice: Choice, at_support: bool) -> (Manifold, &Frame) {
+        match choice {
+            Choice::FaceA(q) => {
+                (face_manifold(self.a, q, self.b, self.rel, at_support), self.frame_a)
+            }
+            Choice::FaceB(q) => {
+                (face_manifold(self.b, q, self.a, self.inv, at_support), self.frame_b)
+            }
+            Choice::Edges(e) => (self.edge_manifold(e), self.frame_a),
+        }
+    }
+
+    /// The contact of an edge pair, in A's space.
+    fn edge_manifold(&self, e: EdgeQuery) -> Manifold {
+        let (ta, tb) = (self.a.topology(), self.b.topology());
+        let h = ta.edges[e.edge_a as usize];
+        let tail = self.a.vertex(ta.half_edge(h).origin);
+        let pb = self.b.vertex(tb.half_edge(e.half_edge_b).origin);
+        edge_contact(
+            tail,
+            self.a.vertex(ta.head(h)) - tail,
+            self.rel.apply(pb),
+            self.rel.rotate(self.b.vertex(tb.head(e.half_edge_b)) - pb),
+            -e.separation,
+        )
+    }
+
+    /// The touching answer for a choice and its manifold (in the space `frame` maps).
+    fn answer(&self, choice: Choice, manifold: &Manifold, frame: &Frame) -> (Feature, Collision) {
+        let (normal, separation) = self.axis(choice);
+        (self.feature(choice), Collision::touching(normal, -separation, manifold, frame))
+    }
+}
+
+/// The manifold of a face query's face of `reference` against `incident`
+/// (mapped into the reference's space by `rel`): clipped, or (`at_support`)
+/// at the incident shape's lowest vertex alone.
+fn face_manifold<R: Convex, I: Convex>(
+    reference: &R,
+    q: FaceQuery,
+    incident: &I,
+    rel: &Frame,
+    at_support: bool,
+) -> Manifold {
+    if at_support {
+        vertex_contact(reference, q.face, incident, rel, q.support)
+    } else {
+        face_contact(reference, q.face, incident, rel, q.support)
+    }
+}

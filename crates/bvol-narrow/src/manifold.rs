@@ -1,0 +1,265 @@
+//! Contact manifolds: the points where two touching polyhedra press into each
+//! other, from clipping a face against a face (Sutherland-Hodgman, as in
+//! Box2D's and Bullet's box and hull manifolds), or from the closest points of
+//! two edges (Ericson, Real-Time Collision Detection 5.1.9).
+
+use glam::DVec3;
+
+use crate::collision::MAX_POINTS;
+use crate::convex::{Convex, Plane};
+use crate::frame::Frame;
+
+/// Incident points above the reference plane by less than this, relative to
+/// the shapes' size, still count as touching: f64 rounding of exactly
+/// resting faces puts some corners a hair above, and a manifold that lost
+/// corners to that would flicker.
+const TOUCH_SLOP: f64 = 1e-9;
+
+/// Points a [`Polygon`] holds before it spills to the heap: a clipped face
+/// has at most as many corners as the incident face plus the reference face,
+/// and hull faces rarely have more than a dozen.
+const INLINE: usize = 32;
+
+/// A polygon's corners, on the stack up to [`INLINE`] of them, then on the heap:
+/// faces of any size clip right, and only the rare huge face allocates.
+struct Polygon {
+    inline: [DVec3; INLINE],
+    len: usize,
+    heap: Vec<DVec3>,
+}
+
+impl Polygon {
+    /// An empty polygon.
+    fn new() -> Polygon {
+        Polygon { inline: [DVec3::ZERO; INLINE], len: 0, heap: Vec::new() }
+    }
+
+    /// Removes every corner, keeping the heap buffer if there is one.
+    fn clear(&mut self) {
+        self.len = 0;
+        self.heap.clear();
+    }
+
+    /// Appends a corner.
+    fn push(&mut self, p: DVec3) {
+        if self.heap.is_empty() && self.len < INLINE {
+            self.inline[self.len] = p;
+        } else {
+            if self.heap.is_empty() {
+                self.heap.extend_from_slice(&self.inline[..self.len]);
+            }
+            self.heap.push(p);
+        }
+        self.len += 1;
+    }
+
+    /// The corners, in order.
+    fn points(&self) -> &[DVec3] {
+        if self.heap.is_empty() { &self.inline[..self.len] } else { &self.heap }
+    }
+}
+
+/// A contact manifold in the reference shape's space: up to four points,
+/// each midway between the surfaces, with its depth.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Manifold {
+    /// Points midway between the surfaces, with their depths (`>= 0`).
+    pub points: [(DVec3, f64); MAX_POINTS],
+    /// How many of `points` are used.
+    pub count: usize,
+}
+
+impl Manifold {
+    /// Adds a point (beyond [`MAX_POINTS`] it is dropped; callers reduce first).
+    pub fn push(&mut self, position: DVec3, depth: f64) {
+        if self.count < MAX_POINTS {
+            self.points[self.count] = (position, depth.max(0.0));
+            self.count += 1;
+        }
+    }
+}
+
+/// The manifold of a face contact: face `face` of `reference` against
+/// `incident`, mapped into the reference's space by `rel`, whose vertex
+/// `support` is its lowest below that face.
+///
+/// The incident face is the one round `support` most anti-parallel to the
+/// reference normal; it is clipped against the planes through the reference
+/// face's edges, square to the face, and the points at or below the reference
+/// plane kept, each moved halfway up to the plane, then reduced to four.
+/// Empty if no clipped point is at or below the plane: the incident shape
+/// then reaches below the plane only beside the reference face, which is not
+/// the axis of least penetration.
+pub(crate) fn face_contact<R: Convex, I: Convex>(
+    reference: &R,
+    face: u32,
+    incident: &I,
+    rel: &Frame,
+    support: u32,
+) -> Manifold {
+    let plane = reference.plane(face);
+    let slop = TOUCH_SLOP * reference.size().max(incident.size());
+    let mut polygon = Polygon::new();
+    let ti = incident.topology();
+    for h in ti.face_loop(incident_face(incident, rel, plane.normal, support)) {
+        polygon.push(rel.apply(incident.vertex(ti.half_edge(h).origin)));
+    }
+    let mut scratch = Polygon::new();
+    let tr = reference.topology();
+    for h in tr.face_loop(face) {
+        let p = reference.vertex(tr.half_edge(h).origin);
+        let side = (reference.vertex(tr.head(h)) - p).cross(plane.normal);
+        clip(&polygon, Plane { normal: side, offset: side.dot(p) }, &mut scratch);
+        std::mem::swap(&mut polygon, &mut scratch);
+    }
+    let mut below = Polygon::new();
+    for &p in polygon.points() {
+        if plane.distance(p) <= slop {
+            below.push(p);
+        }
+    }
+    reduce(below.points(), &plane)
+}
+
+/// The one-point manifold at vertex `support` of `incident` (mapped by `rel`)
+/// below face `face` of `reference`: midway between it and the plane.
+pub(crate) fn vertex_contact<R: Convex, I: Convex>(
+    reference: &R,
+    face: u32,
+    incident: &I,
+    rel: &Frame,
+    support: u32,
+) -> Manifold {
+    reduce(&[rel.apply(incident.vertex(support))], &reference.plane(face))
+}
+
+/// The face round vertex `v` of `shape` whose normal, mapped by `rel`, is most
+/// anti-parallel to `normal` (first on ties).
+fn incident_face<I: Convex>(shape: &I, rel: &Frame, normal: DVec3, v: u32) -> u32 {
+    let dir = rel.unrotate(normal);
+    let topology = shape.topology();
+    let mut best = (u32::MAX, f64::INFINITY);
+    for &h in topology.outgoing(v) {
+        let f = topology.half_edge(h).face;
+        let d = shape.plane(f).normal.dot(dir);
+        if d < best.1 {
+            best = (f, d);
+        }
+    }
+    best.0
+}
+
+/// One Sutherland-Hodgman pass: the part of `polygon` on the inner side of
+/// `plane` (`distance <= 0`) into `out`. The side normal need not be unit: the
+/// crossing parameter is a ratio of distances.
+fn clip(polygon: &Polygon, plane: Plane, out: &mut Polygon) {
+    out.clear();
+    let points = polygon.points();
+    let Some(&last) = points.last() else { return };
+    let (mut a, mut da) = (last, plane.distance(last));
+    for &b in points {
+        let db = plane.distance(b);
+        if (da <= 0.0) != (db <= 0.0) {
+            // Signs differ, so da - db is not zero.
+            out.push(a + (b - a) * (da / (da - db)));
+        }
+        if db <= 0.0 {
+            out.push(b);
+        }
+        (a, da) = (b, db);
+    }
+}
+
+/// At most four of the `points` below `plane` that keep the manifold's
+/// reach (the usual reduction of Bullet and Box2D): the deepest; the one
+/// farthest from it; the one making the largest triangle with those two; the
+/// one adding the most area outside that triangle. Each moves halfway up to
+/// the plane, and its depth is its distance below it.
+fn reduce(points: &[DVec3], plane: &Plane) -> Manifold {
+    let mut manifold = Manifold::default();
+    let mut keep = |p: DVec3| {
+        let d = plane.distance(p);
+        manifold.push(p - plane.normal * (d * 0.5), -d);
+    };
+    if points.len() <= MAX_POINTS {
+        points.iter().for_each(|&p| keep(p));
+        return manifold;
+    }
+    let n = plane.normal;
+    let argmax = |score: &dyn Fn(DVec3) -> f64| {
+        let mut best = (0, f64::NEG_INFINITY);
+        for (i, &p) in points.iter().enumerate() {
+            let s = score(p);
+            if s > best.1 {
+                best = (i, s);
+            }
+        }
+        best
+    };
+    let p0 = points[argmax(&|p| -plane.distance(p)).0];
+    let (i1, far) = argmax(&|p| p.distance_squared(p0));
+    let p1 = points[i1];
+    // Twice the signed area of (p0, p1, p) seen along the normal.
+    let area = |a: DVec3, b: DVec3, p: DVec3| (b - a).cross(p - a).dot(n);
+    let (i2, twice) = argmax(&|p| area(p0, p1, p).abs());
+    keep(p0);
+    if far <= 0.0 {
+        return manifold;
+    }
+    keep(p1);
+    if twice <= 0.0 {
+        return manifold;
+    }
+    let p2 = points[i2];
+    keep(p2);
+    // Wind the triangle counter-clockwise, then take the point farthest
+    // outside any of its edges.
+    let (p1, p2) = if area(p0, p1, p2) > 0.0 { (p1, p2) } else { (p2, p1) };
+    let (i3, outside) = argmax(&|p| (-area(p0, p1, p)).max(-area(p1, p2, p)).max(-area(p2, p0, p)));
+    if outside > 0.0 {
+        keep(points[i3]);
+    }
+    manifold
+}
+
+/// The contact of two edges, `pa + s ea` and `pb + t eb` for `s, t` in `[0, 1]`:
+/// one point, midway between their closest points (Ericson 5.1.9), with the
+/// given depth.
+pub(crate) fn edge_contact(pa: DVec3, ea: DVec3, pb: DVec3, eb: DVec3, depth: f64) -> Manifold {
+    let (ca, cb) = closest_points(pa, ea, pb, eb);
+    let mut manifold = Manifold::default();
+    manifold.push((ca + cb) * 0.5, depth);
+    manifold
+}
+
+/// The closest points of segments `p1 + s d1` and `p2 + t d2`, `s, t` in
+/// `[0, 1]` (Ericson 5.1.9, `ClosestPtSegmentSegment`). Zero-length segments
+/// and parallel ones are handled; a tiny positive divisor only gives a
+/// parameter that the clamp brings back.
+fn closest_points(p1: DVec3, d1: DVec3, p2: DVec3, d2: DVec3) -> (DVec3, DVec3) {
+    let r = p1 - p2;
+    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
+    let (s, t) = if a <= 0.0 && e <= 0.0 {
+        (0.0, 0.0)
+    } else if a <= 0.0 {
+        (0.0, (f / e).clamp(0.0, 1.0))
+    } else {
+        let c = d1.dot(r);
+        if e <= 0.0 {
+            ((-c / a).clamp(0.0, 1.0), 0.0)
+        } else {
+            let b = d1.dot(d2);
+            let denom = a * e - b * b;
+            let s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
+            let t = (b * s + f) / e;
+            if t < 0.0 {
+                ((-c / a).clamp(0.0, 1.0), 0.0)
+            } else if t > 1.0 {
+                (((b - c) / a).clamp(0.0, 1.0), 1.0)
+            } else {
+                (s, t)
+            }
+        }
+    };
+    (p1 + d1 * s, p2 + d2 * t)
+}

@@ -1,0 +1,174 @@
+//! Convex polyhedra with what the separating-axis test reads precomputed.
+
+use bvol_volumes::{ConvexHull, FitError};
+use glam::{DVec3, Vec3};
+
+use crate::ShapeError;
+use crate::cluster::{Cap, Cluster, group};
+use crate::convex::{Arc, Cuboid, Plane, SEEDS, seed_direction, unit_cube};
+use crate::topology::Topology;
+
+/// A convex polyhedron in its local space, with what the separating-axis test
+/// reads laid out for it, computed once per shape: the vertices contiguous
+/// (f32, read as exact f64), the face planes as `(unit normal, offset)` pairs
+/// in f64 (from the exact hull), and a half-edge structure (origin, twin, next,
+/// face) that gives the neighbours of a vertex for hill-climbing support
+/// points, the loops of faces for clipping, and each undirected edge once with
+/// the two face normals it joins: its arc on the Gauss map.
+///
+/// ```
+/// use bvol_narrow::Polyhedron;
+/// use glam::Vec3;
+/// let tetra = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::splat(0.1)]; // the last is inside
+/// let p = Polyhedron::from_points(&tetra)?;
+/// assert_eq!((p.vertices().len(), p.face_count(), p.edge_count()), (4, 4, 6));
+/// # Ok::<(), bvol_narrow::ShapeError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Polyhedron {
+    pub(crate) vertices: Vec<Vec3>,
+    pub(crate) planes: Vec<Plane>,
+    pub(crate) topology: Topology,
+    pub(crate) size: f64,
+    /// The mean of the vertices, and its least distance to a face plane.
+    pub(crate) inner_ball: (DVec3, f64),
+    /// The Gauss-map arc of each edge of `topology.edges`.
+    pub(crate) arcs: Vec<Arc>,
+    /// The faces, numbered so that those facing alike are consecutive, in groups.
+    pub(crate) face_clusters: Vec<Cluster>,
+    /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
+    pub(crate) edge_clusters: Vec<Cluster>,
+    /// The lowest vertex along each of the grid directions of
+    /// [`seed_slot`](crate::convex::seed_slot).
+    pub(crate) seeds: [u32; SEEDS],
+    /// The face most along each of those directions.
+    pub(crate) face_seeds: [u32; SEEDS],
+}
+
+impl Polyhedron {
+    /// The convex hull of the points, as a polyhedron.
+    ///
+    /// No points is [`ShapeError::Empty`]; a NaN or infinite coordinate is
+    /// [`ShapeError::NonFinite`]; points with fewer than 4 non-coplanar among
+    /// them (to the hull's tolerance, about 1e-7 of their extent) are
+    /// [`ShapeError::Degenerate`].
+    pub fn from_points(points: &[Vec3]) -> Result<Polyhedron, ShapeError> {
+        let hull = ConvexHull::new(points).map_err(|e| match e {
+            FitError::Empty => ShapeError::Empty,
+            FitError::NonFinite { index } => ShapeError::NonFinite { index },
+        })?;
+        Polyhedron::from_hull(&hull)
+    }
+
+    /// A polyhedron from a convex hull: its vertices, its faces (convex
+    /// polygons, coplanar triangles merged) and their planes.
+    ///
+    /// A hull that is not solid (a point, a segment or a flat polygon) is
+    /// [`ShapeError::Degenerate`] with its dimension.
+    pub fn from_hull(hull: &ConvexHull) -> Result<Polyhedron, ShapeError> {
+        let dimension = hull.dimension();
+        let faces = (0..hull.face_count()).map(|f| hull.face(f));
+        // A solid hull's faces close up (each edge once each way); checked
+        // here anyway, so a broken hull is an error and not a walk that never ends.
+        let topology = (dimension == 3)
+            .then(|| Topology::from_faces(hull.vertices().len(), faces))
+            .flatten()
+            .ok_or(ShapeError::Degenerate { dimension })?;
+        let planes = (0..hull.face_count())
+            .map(|f| Plane { normal: hull.face_normal(f), offset: hull.face_offset(f) })
+            .collect();
+        Ok(Polyhedron::assemble(hull.vertices().to_vec(), planes, topology))
+    }
+
+    /// The box `[-half_extents, half_extents]`: the unit cube scaled, the same
+    /// numbers that [`obb_obb`](crate::obb_obb) uses for a box.
+    ///
+    /// Half extents that are not all finite and `> 0` are
+    /// [`ShapeError::BadHalfExtents`].
+    pub fn cuboid(half_extents: Vec3) -> Result<Polyhedron, ShapeError> {
+        if !(half_extents.is_finite() && half_extents.cmpgt(Vec3::ZERO).all()) {
+            return Err(ShapeError::BadHalfExtents);
+        }
+        let unit = unit_cube();
+        let half = half_extents.as_dvec3();
+        Ok(Polyhedron::assemble(
+            unit.vertices.iter().map(|&v| v * half_extents).collect(),
+            unit.planes.iter().map(|&p| Cuboid::scaled_plane(p, half)).collect(),
+            unit.topology.clone(),
+        ))
+    }
+
+    /// The polyhedron from its parts, with what the queries read measured:
+    /// its size, a ball inside it, the hill-climbing seeds, the edges' arcs,
+    /// and the faces and edges renumbered into clusters by direction.
+    fn assemble(vertices: Vec<Vec3>, planes: Vec<Plane>, topology: Topology) -> Polyhedron {
+        let points: Vec<DVec3> = vertices.iter().map(|v| v.as_dvec3()).collect();
+        let (lo, hi) = points
+            .iter()
+            .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
+        let size = ((hi - lo) * 0.5).length();
+        // The mean of the vertices is inside; a ball about it reaching no face
+        // plane is inside too.
+        let centre = points.iter().sum::<DVec3>() / points.len() as f64;
+        let radius = planes.iter().map(|p| -p.distance(centre)).fold(f64::INFINITY, f64::min);
+        let faces: Vec<(Cap, f64)> =
+            planes.iter().map(|p| (Cap::new(p.normal, 0.0), -p.distance(centre))).collect();
+        let (face_order, face_clusters) = group(&faces);
+        let planes: Vec<Plane> = face_order.iter().map(|&f| planes[f as usize]).collect();
+        let mut topology = topology.with_face_order(&face_order);
+        let arcs: Vec<Arc> = topology
+            .edges
+            .iter()
+            .map(|&h| {
+                let face = |f: u32| planes[f as usize];
+                Arc::new(face(topology.half_edge(h).face), face(topology.twin_face(h)), centre)
+            })
+            .collect();
+        let (edge_order, edge_clusters) =
+            group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
+        topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
+        let arcs = edge_order.iter().map(|&e| arcs[e as usize]).collect();
+        // First on ties, so the grid's centre slot (no direction) holds 0.
+        let first_min = |m: (u32, f64), x: (u32, f64)| if x.1 < m.1 { x } else { m };
+        let seeds = std::array::from_fn(|slot| {
+            let dir = seed_direction(slot);
+            (0u32..)
+                .zip(&points)
+                .map(|(i, p)| (i, dir.dot(*p)))
+                .fold((0, f64::INFINITY), first_min)
+                .0
+        });
+        let face_seeds = std::array::from_fn(|slot| {
+            let dir = seed_direction(slot);
+            let along = (0u32..).zip(&planes).map(|(f, p)| (f, -dir.dot(p.normal)));
+            along.fold((0, f64::INFINITY), first_min).0
+        });
+        Polyhedron {
+            vertices,
+            planes,
+            topology,
+            size,
+            inner_ball: (centre, radius.max(0.0)),
+            arcs,
+            face_clusters,
+            edge_clusters,
+            seeds,
+            face_seeds,
+        }
+    }
+
+    /// The vertices, in local space.
+    pub fn vertices(&self) -> &[Vec3] {
+        &self.vertices
+    }
+
+    /// Number of faces (convex polygons).
+    pub fn face_count(&self) -> usize {
+        self.planes.len()
+    }
+
+    /// Number of undirected edges.
+    pub fn edge_count(&self) -> usize {
+        self.topology.edges.len()
+    }
+}

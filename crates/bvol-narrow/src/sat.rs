@@ -1,0 +1,414 @@
+//! The separating-axis queries between two convex polyhedra (Gregorius, "The
+//! Separating Axis Test between Convex Polyhedra", GDC 2013): the face axes of
+//! each, and the edge-pair axes that are faces of their Minkowski difference.
+//!
+//! Everything runs in the space of the first shape, in f64, with the second
+//! mapped in by one relative frame: only the few directions and points that a
+//! query touches are mapped, never the whole shape.
+
+use glam::DVec3;
+
+use crate::cluster::Cap;
+use crate::convex::Convex;
+use crate::frame::Frame;
+
+/// Edge pairs whose directions are closer to parallel than this sine of their
+/// angle are skipped: their cross product is too short to be a direction, and
+/// their Minkowski face is a sliver between face normals that the face queries
+/// test. In f64 the cross product of edges from f32 points is good to about
+/// 1e-16 of `|e1| |e2|`, so at 1e-8 its direction is good to 1e-8 radians, and
+/// a skipped pair's axis lies within 1e-8 radians of a tested one: either way
+/// the separation is off by at most about 1e-8 of the shapes' size.
+const PARALLEL_SINE: f64 = 1e-8;
+
+/// A face of the reference shape and how far the other shape is above it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct FaceQuery {
+    /// The face.
+    pub face: u32,
+    /// Least signed distance of the other shape's vertices above its plane:
+    /// positive means this face's normal separates them.
+    pub separation: f64,
+    /// The other shape's vertex at that distance (its support point against the normal).
+    pub support: u32,
+}
+
+/// An edge of A, an edge of B, and the separation along their common normal.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct EdgeQuery {
+    /// Index into A's edge list.
+    pub edge_a: u32,
+    /// The half-edge of B.
+    pub half_edge_b: u32,
+    /// Signed distance of B's edge beyond A's along `axis`.
+    pub separation: f64,
+    /// Unit axis in A's space, pointing out of A (from A to B).
+    pub axis: DVec3,
+}
+
+/// The separation of `other` above face `f` of `reference`, `rel` mapping
+/// `other`'s space into `reference`'s: the least `n . x - offset` over the other
+/// shape's vertices `x`, found by hill climbing from vertex `start`.
+pub(crate) fn face_separation<R: Convex, O: Convex>(
+    reference: &R,
+    other: &O,
+    rel: &Frame,
+    f: u32,
+    start: u32,
+) -> FaceQuery {
+    let plane = reference.plane(f);
+    // n . (R x + t) = (R^T n) . x + n . t: one direction mapped, not the vertices.
+    let (support, low) = other.support_min(rel.unrotate(plane.normal), start);
+    let separation = low + plane.normal.dot(rel.translation) - plane.offset;
+    FaceQuery { face: f, separation, support }
+}
+
+/// The face of `reference` whose normal separates the shapes most, stopping
+/// at the first that separates them (Gregorius's face query); faces that
+/// cannot beat `floor` need not be found: if none can, the answer is face
+/// `first`, which is always searched, first.
+///
+/// Most faces are skipped unseen, by two bounds on the other shape's
+/// separation above a face's plane: it holds a ball about a centre `c`, so the
+/// separation is at most the plane's distance to `c` less the radius; and it
+/// holds the point `witness` (in the reference's space), so at most that
+/// point's distance, which is close for faces facing the witness. A cluster
+/// of faces is skipped at once when the same bounds fail for its cap (a
+/// plane's distance to `p` is `n . (p - c_R)` less the depth of the
+/// reference's inner centre `c_R` behind it). Only faces whose bounds beat
+/// the best so far (and the floor) are searched, each from the previous
+/// one's support point.
+pub(crate) fn face_query<R: Convex, O: Convex>(
+    reference: &R,
+    other: &O,
+    rel: &Frame,
+    first: u32,
+    floor: f64,
+    witness: DVec3,
+) -> FaceQuery {
+    let (centre, radius) = other.inner_ball();
+    let centre = rel.apply(centre);
+    let inner = reference.inner_ball().0;
+    let (ball, witnessed) = (centre - inner, witness - inner);
+    let (ball_length, witnessed_length) = (ball.length(), witnessed.length());
+    let dir = rel.unrotate(reference.plane(first).normal);
+    let mut best = face_separation(reference, other, rel, first, other.seed(dir));
+    let mut start = best.support;
+    for cluster in reference.face_clusters() {
+        let bar = best.separation.max(floor);
+        if best.separation > 0.0
+            || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar
+            || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
+        {
+            continue;
+        }
+        for f in cluster.members {
+            let bar = best.separation.max(floor);
+            let plane = reference.plane(f);
+            if f == first
+                || best.separation > 0.0
+                || plane.distance(centre) - radius <= bar
+                || plane.distance(witness) <= bar
+            {
+                continue;
+            }
+            let q = face_separation(reference, other, rel, f, start);
+            start = q.support;
+            if q.separation > best.separation {
+                best = q;
+            }
+        }
+    }
+    best
+}
+
+/// The edge pair of A and B with the greatest separation among those whose
+/// Gauss-map arcs cross (the Minkowski faces), stopping at the first that
+/// separates them; pairs that cannot beat `floor` need not be found. `None`
+/// when no pair was found (no arcs cross, all crossing pairs are parallel, or
+/// none can beat the floor).
+///
+/// Gregorius tests every pair with his IsMinkowskiFace triple products; that
+/// is `E_A * E_B` tests, a third of a million for hulls of 200 vertices. This
+/// walks instead: each arc of A, from one face normal `n1` to the other `n2`,
+/// is followed across B's negated Gauss map, whose regions are B's vertices
+/// (the region of `v` holds the directions `d` in which `v` is B's lowest
+/// vertex, the least `d . v`). The walk starts in the region of B's support
+/// point against `n1`; leaving a region through the boundary between `v` and
+/// its neighbour `w` is crossing B's arc of edge `vw`, a Minkowski face.
+/// Regions are convex and an arc is shorter than a half circle, so the walk
+/// meets each region at most once: the work is the number of crossings, about
+/// `E_A + E_B` in all, plus one step per edge of A.
+///
+/// Most arcs of A are skipped unwalked. Along any direction `d` of A's arc
+/// the separation is `d . (B's lowest point) - d . (A's edge)`, and B's lowest
+/// point is at most B's inner centre less its radius; so an arc can only beat
+/// the bar if `d . (c_B - edge) - r_B` can, somewhere on it, and (B's lowest
+/// point being at most as low as any of its points) if `d . (witness - edge)`
+/// can, for a point `witness` of B in A's space ([`Arc::max`]). Cheaper bounds
+/// go first: A's inner centre `c_A` is at least [`Arc::inner`] behind the edge
+/// along the arc, and the arc lies in its cap, so `cap max of (c_B - c_A) -
+/// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too; and
+/// the same with a cluster's cap and depth bound a whole cluster of arcs.
+///
+/// [`Arc::max`]: crate::convex::Arc::max
+/// [`Arc::inner`]: crate::convex::Arc::inner
+pub(crate) fn edge_query<A: Convex, B: Convex>(
+    a: &A,
+    b: &B,
+    rel: &Frame,
+    floor: f64,
+    witness: DVec3,
+) -> Option<EdgeQuery> {
+    let (ta, tb) = (a.topology(), b.topology());
+    let centre_a = a.inner_ball().0;
+    let (centre_b, radius_b) = b.inner_ball();
+    let centre_b = rel.apply(centre_b);
+    let (ball, witnessed) = (centre_b - centre_a, witness - centre_a);
+    let (ball_length, witnessed_length) = (ball.length(), witnessed.length());
+    let mut best: Option<EdgeQuery> = None;
+    let mut start: Option<u32> = None; // B's support point against the last arc's start
+    let beaten = |cap: &Cap, inner: f64, bar: f64| {
+        cap.max(ball, ball_length) - inner - radius_b <= bar
+            || cap.max(witnessed, witnessed_length) - inner <= bar
+    };
+    for cluster in a.edge_clusters() {
+        let bar = best.map_or(floor, |q| q.separation.max(floor));
+        if beaten(&cluster.cap, cluster.inner, bar) {
+            continue;
+        }
+        for e in cluster.members {
+            let bar = best.map_or(floor, |q| q.separation.max(floor));
+            let arc = a.arc(e);
+            if beaten(&arc.cap, arc.inner, bar) {
+                continue;
+            }
+            let h = ta.edges[e as usize];
+            let edge = ta.half_edge(h);
+            let (n1, n2) = (a.plane(edge.face).normal, a.plane(ta.twin_face(h)).normal);
+            let tail = a.vertex(edge.origin);
+            if arc.max(n1, n2, centre_b - tail) - radius_b <= bar
+                || arc.max(n1, n2, witness - tail) <= bar
+            {
+                continue;
+            }
+            // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
+            // starts at B's support point against n1, climbed from the last.
+            let (d1, d2) = (rel.unrotate(n1), rel.unrotate(n2));
+            let v0 = b.support_min(d1, start.unwrap_or_else(|| b.seed(d1))).0;
+            start = Some(v0);
+            let dir_a = a.vertex(ta.head(h)) - tail;
+            let (mut v, mut t) = (v0, 0.0);
+            for _ in 0..tb.vertex_count() {
+                let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
+                let (pb, qb) = (b.vertex(v), b.vertex(w));
+                let found =
+                    edge_separation(tail, dir_a, rel.apply(pb), rel.rotate(qb - pb), n1 + n2);
+                if let Some((separation, axis)) = found
+                    && best.is_none_or(|q| separation > q.separation)
+                {
+                    best = Some(EdgeQuery { edge_a: e, half_edge_b: hb, separation, axis });
+                    if separation > 0.0 {
+                        return best;
+                    }
+                }
+                (v, t) = (w, exit_t);
+            }
+        }
+    }
+    best
+}
+
+/// Where the arc `d(t) = (1 - t) d1 + t d2`, from `t` on, leaves the region of
+/// B's vertex `v`: the least `t' >= t` at which a neighbour `w` becomes lower
+/// (`d(t') . (w - v) < 0` after it), with the half-edge `v -> w` and `w`;
+/// `None` if `v` stays lowest to the end. `d . (w - v)` is linear in `t`,
+/// from `alpha` at 0 to `beta` at 1; a neighbour already lower at `t`
+/// (rounding) is left at once.
+fn region_exit<B: Convex>(b: &B, v: u32, d1: DVec3, d2: DVec3, t: f64) -> Option<(f64, u32, u32)> {
+    let topology = b.topology();
+    let x = b.vertex(v);
+    let mut exit: Option<(f64, u32, u32)> = None;
+    for (&h, &w) in topology.outgoing(v).iter().zip(topology.neighbours(v)) {
+        let step = b.vertex(w) - x;
+        let beta = d2.dot(step);
+        if beta >= 0.0 {
+            continue;
+        }
+        let alpha = d1.dot(step);
+        let at = if alpha > 0.0 { (alpha / (alpha - beta)).max(t) } else { t };
+        if exit.is_none_or(|(best, _, _)| at < best) {
+            exit = Some((at, h, w));
+        }
+    }
+    exit
+}
+
+/// The gap between two shapes along an axis, from their support points.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct AxisGap {
+    /// Unit axis in A's space, from A to B.
+    pub axis: DVec3,
+    /// `min over B - max over A` along the axis: positive when it separates them.
+    pub gap: f64,
+    /// A's highest vertex along the axis, in A's space.
+    pub high_a: DVec3,
+    /// B's lowest vertex along the axis, in A's space.
+    pub low_b: DVec3,
+    /// The indices of those two vertices.
+    pub supports: (u32, u32),
+}
+
+/// The gap between `a` and `b` (B mapped into A's space by `rel`) along the
+/// unit `axis` (in A's space, from A to B), from their support points, hill
+/// climbing from `start_a` and `start_b`.
+pub(crate) fn axis_gap<A: Convex, B: Convex>(
+    a: &A,
+    b: &B,
+    rel: &Frame,
+    axis: DVec3,
+    start_a: u32,
+    start_b: u32,
+) -> AxisGap {
+    let (va, low_a) = a.support_min(-axis, start_a);
+    let (vb, low_b) = b.support_min(rel.unrotate(axis), start_b);
+    let gap = low_b + axis.dot(rel.translation) + low_a;
+    AxisGap { axis, gap, high_a: a.vertex(va), low_b: rel.apply(b.vertex(vb)), supports: (va, vb) }
+}
+
+/// The line from A's inner centre to B's as an axis, with the gap along it:
+/// a cheap first guess that separates most pairs that are apart, and whose
+/// support points bound the separations of the faces and edges facing
+/// along it. Hill climbing starts from `starts` (A's, B's), or from seeds.
+/// `None` for concentric shapes.
+pub(crate) fn centre_axis<A: Convex, B: Convex>(
+    a: &A,
+    b: &B,
+    rel: &Frame,
+    starts: Option<(u32, u32)>,
+) -> Option<AxisGap> {
+    let axis = (rel.apply(b.inner_ball().0) - a.inner_ball().0).try_normalize()?;
+    let (start_a, start_b) = starts.unwrap_or_else(|| (a.seed(-axis), b.seed(rel.unrotate(axis))));
+    Some(axis_gap(a, b, rel, axis, start_a, start_b))
+}
+
+/// The separation of edge `(pb, pb + eb)` beyond edge `(pa, pa + ea)` along
+/// their common normal, oriented along `outward` (a direction out of A at its
+/// edge, the sum of its two face normals), with that unit axis; `None` for
+/// edges closer to parallel than [`PARALLEL_SINE`]. Exact for edges on a
+/// Minkowski face, where both edges are their shapes' support points along the axis.
+pub(crate) fn edge_separation(
+    pa: DVec3,
+    ea: DVec3,
+    pb: DVec3,
+    eb: DVec3,
+    outward: DVec3,
+) -> Option<(f64, DVec3)> {
+    let cross = ea.cross(eb);
+    let len2 = cross.length_squared();
+    let limit = PARALLEL_SINE * PARALLEL_SINE * ea.length_squared() * eb.length_squared();
+    if len2 <= limit {
+        return None;
+    }
+    let axis = cross / len2.sqrt();
+    let axis = if axis.dot(outward) < 0.0 { -axis } else { axis };
+    Some((axis.dot(pb - pa), axis))
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat3, DQuat, Vec3};
+
+    use super::*;
+    use crate::Polyhedron;
+
+    /// Gregorius's IsMinkowskiFace: whether the arc `a`-`b` and the arc
+    /// `c`-`d` (B's normals already negated) cross, by triple products.
+    fn is_minkowski_face(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> bool {
+        let (bxa, dxc) = (b.cross(a), d.cross(c));
+        let (cba, dba, adc, bdc) = (c.dot(bxa), d.dot(bxa), a.dot(dxc), b.dot(dxc));
+        cba * dba < 0.0 && adc * bdc < 0.0 && cba * bdc > 0.0
+    }
+
+    /// Every pair of edges tested with IsMinkowskiFace, as Gregorius does: the
+    /// greatest separation among the crossing pairs.
+    fn brute_force_edge_query(a: &Polyhedron, b: &Polyhedron, rel: &Frame) -> Option<f64> {
+        let (ta, tb) = (a.topology(), b.topology());
+        let mut best: Option<f64> = None;
+        for &ha in &ta.edges {
+            let ea = ta.half_edge(ha);
+            let (n1, n2) = (a.plane(ea.face).normal, a.plane(ta.twin_face(ha)).normal);
+            let pa = a.vertex(ea.origin);
+            for &hb in &tb.edges {
+                let eb = tb.half_edge(hb);
+                let m1 = -rel.rotate(b.plane(eb.face).normal);
+                let m2 = -rel.rotate(b.plane(tb.twin_face(hb)).normal);
+                if !is_minkowski_face(n1, n2, m1, m2) {
+                    continue;
+                }
+                let pb = b.vertex(eb.origin);
+                let dir_b = rel.rotate(b.vertex(tb.head(hb)) - pb);
+                let dir_a = a.vertex(ta.head(ha)) - pa;
+                if let Some((s, _)) = edge_separation(pa, dir_a, rel.apply(pb), dir_b, n1 + n2) {
+                    best = Some(best.map_or(s, |x: f64| x.max(s)));
+                }
+            }
+        }
+        best
+    }
+
+    /// A small deterministic generator (SplitMix64) for the unit tests.
+    fn next(state: &mut u64) -> f64 {
+        *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = *state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        ((z ^ (z >> 31)) >> 11) as f64 / (1u64 << 53) as f64
+    }
+
+    fn cloud(state: &mut u64, n: usize) -> Polyhedron {
+        let points: Vec<Vec3> = (0..n)
+            .map(|_| {
+                let v = DVec3::new(next(state), next(state), next(state)) * 2.0 - 1.0;
+                v.normalize_or_zero().as_vec3() * (0.5 + next(state) as f32 * 0.5)
+            })
+            .collect();
+        Polyhedron::from_points(&points).expect("a solid cloud")
+    }
+
+    /// The Gauss-map walk finds the same greatest edge separation as testing
+    /// every pair with IsMinkowskiFace, on overlapping random hulls (where no
+    /// early exit cuts either short).
+    #[test]
+    fn edge_walk_matches_every_pair_tested() {
+        let mut state = 42;
+        let mut compared = 0;
+        for case in 0..400 {
+            let (a, b) = (cloud(&mut state, 4 + case % 40), cloud(&mut state, 4 + case % 23));
+            let q = DQuat::from_xyzw(
+                next(&mut state),
+                next(&mut state),
+                next(&mut state),
+                next(&mut state),
+            ) - DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5);
+            let rel = Frame {
+                rotation: DMat3::from_quat(q.normalize()),
+                translation: (DVec3::new(next(&mut state), next(&mut state), next(&mut state))
+                    - 0.5)
+                    * 0.6,
+            };
+            let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, rel.apply(b.inner_ball().0))
+                .map(|q| q.separation);
+            let every = brute_force_edge_query(&a, &b, &rel);
+            match (walked, every) {
+                (Some(w), Some(e)) if e <= 0.0 => {
+                    assert!((w - e).abs() < 1e-12, "case {case}: walk {w}, every pair {e}");
+                    compared += 1;
+                }
+                (Some(w), Some(e)) => assert!(w > 0.0, "case {case}: walk {w}, every pair {e}"),
+                (w, e) => assert_eq!(w.is_some(), e.is_some(), "case {case}: {w:?} {e:?}"),
+            }
+        }
+        assert!(compared > 300, "{compared}");
+    }
+}

@@ -1,0 +1,179 @@
+//! `bvol bench world`: the whole frame of a [`World`] on the uniform scene's
+//! motion, bodies of one mesh shape spinning slowly: one row per stage, with
+//! its pairs and milliseconds per frame; then the same boxes through the tree
+//! alone, for the ratio of the whole frame to the broadphase.
+
+use std::path::PathBuf;
+use std::sync::Arc;
+use std::time::{Duration, Instant};
+
+use bvol::scenes::{Scene, SceneKind};
+use bvol::volumes::{Aabb, Pose};
+use bvol::{BodyDesc, BodyId, FitOptions, FrameStats, Shape, World};
+use bvol_tree::Tree;
+use clap::Args;
+use glam::{Quat, Vec3};
+
+/// The world benchmark's options.
+#[derive(Args, Debug)]
+pub struct WorldArgs {
+    /// Bodies.
+    #[arg(long, default_value_t = 100_000)]
+    n: usize,
+    /// The bodies' shape: a Wavefront OBJ file (one convex part per object),
+    /// scaled to the scene's body size. Default: a unit cube.
+    #[arg(long)]
+    shape: Option<PathBuf>,
+    /// Frames to time, after one to load the world.
+    #[arg(long, default_value_t = 30)]
+    frames: usize,
+    /// Seed of the scene.
+    #[arg(long, default_value_t = 1)]
+    seed: u64,
+    /// Threads (the output is the same for any).
+    #[arg(long, default_value_t = 1)]
+    threads: usize,
+}
+
+/// The radius of a body's bounding sphere in the scene: its boxes are cubes
+/// of half side 0.5, so about one contact a body, as in `bench pairs`.
+const BODY_RADIUS: f32 = 0.75;
+/// Spin per frame, radians.
+const SPIN: f32 = 0.02;
+
+pub fn run(args: WorldArgs) -> Result<(), String> {
+    if args.threads == 0 || args.frames == 0 || args.n < 2 {
+        return Err("--threads and --frames must be at least 1, --n at least 2".into());
+    }
+    let shape = match &args.shape {
+        Some(path) => {
+            scaled(&Shape::from_obj(path, FitOptions::default()).map_err(|e| e.to_string())?)?
+        }
+        None => Shape::cuboid(Vec3::splat(BODY_RADIUS / 3f32.sqrt())).map_err(|e| e.to_string())?,
+    };
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(args.threads)
+        .build()
+        .map_err(|e| e.to_string())?;
+    let (totals, tree_ms) = pool.install(|| measure(&args, Arc::new(shape)))?;
+    print(&totals, tree_ms, &args);
+    Ok(())
+}
+
+/// The shape scaled about its sphere's centre so that the sphere's radius is
+/// [`BODY_RADIUS`].
+fn scaled(shape: &Shape) -> Result<Shape, String> {
+    let s = shape.sphere();
+    let k = BODY_RADIUS / s.radius;
+    let meshes: Vec<bvol::Mesh> = shape
+        .parts()
+        .iter()
+        .filter_map(|p| match p {
+            bvol::Part::Hull(h) => Some(bvol::Mesh {
+                name: String::new(),
+                positions: h.polyhedron.vertices().iter().map(|&v| (v - s.center) * k).collect(),
+                triangles: Vec::new(),
+            }),
+            bvol::Part::Ball(_) => None,
+        })
+        .collect();
+    Shape::from_meshes(&meshes, FitOptions::default()).map_err(|e| e.to_string())
+}
+
+/// Per-stage times summed over the timed frames, and pair counts.
+#[derive(Default)]
+struct Totals {
+    frames: usize,
+    stats: Vec<FrameStats>,
+}
+
+/// Runs the world, then the tree alone on the same leaf boxes.
+fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<(Totals, f64), String> {
+    let mut scene = Scene::new(SceneKind::Uniform, args.n, args.seed);
+    let mut world = World::new();
+    let mut ids: Vec<BodyId> = Vec::with_capacity(args.n);
+    let spins: Vec<Quat> =
+        (0..args.n).map(|i| Quat::from_axis_angle(axis(i as u32), SPIN)).collect();
+    let mut rotations: Vec<Quat> =
+        (0..args.n).map(|i| Quat::from_axis_angle(axis(!(i as u32)), i as f32)).collect();
+    let mut poses: Vec<Pose> = Vec::with_capacity(args.n);
+    let mut totals = Totals::default();
+    let mut leaves: Vec<Vec<Aabb>> = Vec::new();
+    for f in 0..=args.frames {
+        let boxes = scene.step();
+        poses.clear();
+        for (i, b) in boxes.iter().enumerate() {
+            rotations[i] = (spins[i] * rotations[i]).normalize();
+            poses.push(Pose::new(b.center(), rotations[i]));
+        }
+        if f == 0 {
+            for p in &poses {
+                ids.push(
+                    world.add_body(BodyDesc::new(shape.clone(), *p)).map_err(|e| e.to_string())?,
+                );
+            }
+        } else {
+            world.set_poses(&ids, &poses).map_err(|e| e.to_string())?;
+        }
+        let stats = *world.update();
+        if f > 0 {
+            totals.stats.push(stats);
+            totals.frames += 1;
+            leaves.push(ids.iter().map(|&id| leaf(&world, id)).collect());
+        }
+    }
+    // The broadphase alone on the same leaves, as `bench pairs` runs it.
+    let mut tree = Tree::from_bounds(&leaves[0]).map_err(|e| e.to_string())?;
+    let mut pairs = Vec::new();
+    let mut spent = Duration::ZERO;
+    for frame in &leaves[1..] {
+        let started = Instant::now();
+        tree.update(frame).map_err(|e| e.to_string())?;
+        tree.pairs_into(&mut pairs);
+        spent += started.elapsed();
+    }
+    let tree_ms = spent.as_secs_f64() * 1e3 / (leaves.len() - 1).max(1) as f64;
+    Ok((totals, tree_ms))
+}
+
+/// The leaf box the world gave a body in its tree.
+fn leaf(world: &World, id: BodyId) -> Aabb {
+    world.moving_tree().bound(id.index()).expect("every body is dynamic")
+}
+
+/// A fixed pseudo-random unit axis for body `i`.
+fn axis(i: u32) -> Vec3 {
+    let h = |k: u32| {
+        (i.wrapping_mul(0x9E37_79B9).wrapping_add(k).wrapping_mul(0x85EB_CA6B) >> 8) as f32
+            / (1 << 24) as f32
+            - 0.5
+    };
+    Vec3::new(h(1), h(2), h(3)).try_normalize().unwrap_or(Vec3::Y)
+}
+
+fn print(totals: &Totals, tree_ms: f64, args: &WorldArgs) {
+    let k = totals.frames.max(1) as f64;
+    let ms = |f: fn(&FrameStats) -> Duration| {
+        totals.stats.iter().map(|s| f(s).as_secs_f64()).sum::<f64>() * 1e3 / k
+    };
+    let count = |f: fn(&FrameStats) -> usize| totals.stats.iter().map(f).sum::<usize>() as f64 / k;
+    let bounds = ms(|s| s.bounds_time);
+    let refit = count(|s| s.refit);
+    println!("stage\tpairs_per_frame\tms_per_frame");
+    println!("world bounds ({refit:.0} bodies)\t-\t{bounds:.3}");
+    println!("tree candidates\t{:.1}\t{:.3}", count(|s| s.tree_candidates), ms(|s| s.tree_time));
+    println!("after spheres\t{:.1}\t{:.3}", count(|s| s.after_spheres), ms(|s| s.spheres_time));
+    println!("after OBBs\t{:.1}\t{:.3}", count(|s| s.after_obbs), ms(|s| s.obbs_time));
+    println!("touching\t{:.1}\t{:.3}", count(|s| s.touching), ms(|s| s.narrow_time));
+    let total = ms(|s| s.total_time());
+    println!("whole frame\t-\t{total:.3}");
+    println!("tree alone (bench pairs)\t-\t{tree_ms:.3}");
+    println!(
+        "# n {}, {} frames, {} threads; whole frame / tree alone = {:.2}; bounds refit {:.1} M bodies/s",
+        args.n,
+        totals.frames,
+        args.threads,
+        total / tree_ms,
+        refit / bounds / 1e3
+    );
+}

@@ -1,0 +1,322 @@
+//! One frame of the world, as ../shared/DESIGN.md "One frame" has it: world
+//! bounds of the bodies that moved, tree upkeep, candidate pairs, the sphere
+//! test, the OBB test, the hull separating-axis test, and the contact events.
+//! Each stage counts what it lets through and times itself.
+
+use std::time::{Duration, Instant};
+
+use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
+use bvol_volumes::{Aabb, Obb, Pose, Sphere};
+use glam::Vec3;
+use rayon::prelude::*;
+
+use crate::shape::Part;
+use crate::world::{Bodies, PairState};
+use crate::{BodyId, BodyKind, World};
+
+/// What happened to a touching pair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventKind {
+    /// It touches now and did not last frame.
+    Began,
+    /// It touched last frame and still does.
+    Persisting,
+    /// It touched last frame and does not now (or a body was removed).
+    Ended,
+}
+
+/// A contact event: the two bodies (`a` before `b` by slot) and, unless it
+/// ended, how they touch, the normal pointing from `a` to `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactEvent {
+    /// What happened.
+    pub kind: EventKind,
+    /// The body with the lower slot.
+    pub a: BodyId,
+    /// The other body.
+    pub b: BodyId,
+    /// The contact: `None` for an ended pair.
+    pub contact: Option<Contact>,
+}
+
+impl ContactEvent {
+    /// The end of a pair's contact.
+    pub(crate) fn ended(a: BodyId, b: BodyId) -> Self {
+        ContactEvent { kind: EventKind::Ended, a, b, contact: None }
+    }
+}
+
+/// Pairs let through by each stage of a frame, and the time each took.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct FrameStats {
+    /// Bodies whose world bounds were refit (those that moved).
+    pub refit: usize,
+    /// Pairs whose tree leaves overlap (layer filtering included).
+    pub tree_candidates: usize,
+    /// Of those, pairs whose world spheres overlap.
+    pub after_spheres: usize,
+    /// Of those, pairs whose world OBBs overlap.
+    pub after_obbs: usize,
+    /// Of those, pairs whose shapes touch.
+    pub touching: usize,
+    /// Time to refit the world bounds of the bodies that moved.
+    pub bounds_time: Duration,
+    /// Time of tree upkeep and the pair search.
+    pub tree_time: Duration,
+    /// Time of the sphere test.
+    pub spheres_time: Duration,
+    /// Time of the OBB test.
+    pub obbs_time: Duration,
+    /// Time of the hull test and the contact events.
+    pub narrow_time: Duration,
+}
+
+impl FrameStats {
+    /// The whole frame's time.
+    pub fn total_time(&self) -> Duration {
+        self.bounds_time + self.tree_time + self.spheres_time + self.obbs_time + self.narrow_time
+    }
+}
+
+/// Bodies refit per rayon task: the refit is a few dozen ns a body.
+const REFIT_CHUNK: usize = 4096;
+/// Pairs tested per rayon task.
+const PAIR_CHUNK: usize = 1024;
+
+impl World {
+    /// Runs one frame: the bodies moved since the last update get their world
+    /// bounds and tree leaves updated, candidate pairs come from the trees,
+    /// and each stage passes on the pairs it cannot rule out. Then
+    /// [`events`](World::events) and [`stats`](World::stats) hold its result.
+    /// The same world and poses give the same events in the same order on
+    /// any number of threads.
+    pub fn update(&mut self) -> &FrameStats {
+        let mut stats = FrameStats::default();
+        let start = Instant::now();
+        let refit = self.refit_bounds();
+        stats.refit = refit.len();
+        let t = Instant::now();
+        stats.bounds_time = t - start;
+        self.update_trees(&refit);
+        let candidates = self.candidates();
+        stats.tree_candidates = candidates.len();
+        let t2 = Instant::now();
+        stats.tree_time = t2 - t;
+        let near = filter(&candidates, |a, b| self.bodies.spheres_overlap(a, b));
+        stats.after_spheres = near.len();
+        let t3 = Instant::now();
+        stats.spheres_time = t3 - t2;
+        let nearer = filter(&near, |a, b| self.bodies.obbs[a].overlaps(&self.bodies.obbs[b]));
+        stats.after_obbs = nearer.len();
+        let t4 = Instant::now();
+        stats.obbs_time = t4 - t3;
+        stats.touching = self.narrow_phase(&nearer);
+        stats.narrow_time = t4.elapsed();
+        self.stats = stats;
+        &self.stats
+    }
+
+    /// Refits the world sphere and OBB of every live body moved since the
+    /// last update (in parallel); returns their slots and leaf boxes.
+    fn refit_bounds(&mut self) -> Vec<(u32, Aabb)> {
+        let b = &mut self.bodies;
+        let mut dirty = std::mem::take(&mut b.dirty);
+        dirty.retain(|&s| std::mem::replace(&mut b.is_dirty[s as usize], false));
+        dirty.retain(|&s| b.shapes[s as usize].is_some());
+        let fitted: Vec<(Sphere, Obb)> = dirty
+            .par_iter()
+            .with_min_len(REFIT_CHUNK)
+            .map(|&s| {
+                let shape = b.shapes[s as usize].as_ref().expect("live slot");
+                let pose = &b.poses[s as usize];
+                (shape.sphere().transformed(pose), shape.obb().transformed(pose))
+            })
+            .collect();
+        let mut leaves = Vec::with_capacity(dirty.len());
+        for (&s, (sphere, obb)) in dirty.iter().zip(fitted) {
+            let i = s as usize;
+            (b.centers[i], b.radii[i], b.obbs[i]) = (sphere.center, sphere.radius, obb);
+            leaves.push((s, leaf_box(&sphere, &obb)));
+        }
+        b.dirty = dirty;
+        b.dirty.clear();
+        leaves
+    }
+
+    /// Moves the refit bodies' leaves, each tree in one call that picks
+    /// per-leaf updates or a refit by the fraction moved, and inserts new
+    /// ones.
+    fn update_trees(&mut self, refit: &[(u32, Aabb)]) {
+        let (mut moving, mut resting) = (Vec::new(), Vec::new());
+        for &(slot, leaf) in refit {
+            let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
+            let tree = if dynamic { &mut self.moving } else { &mut self.resting };
+            if !tree.contains(slot) {
+                // A live slot and a finite box: the insertion cannot fail.
+                tree.insert(slot, leaf).ok();
+            } else if dynamic {
+                moving.push((slot, leaf));
+            } else {
+                resting.push((slot, leaf));
+            }
+        }
+        // Every id is in its tree and every box finite: neither can fail.
+        self.moving.update_moved(&moving).ok();
+        self.resting.update_moved(&resting).ok();
+    }
+
+    /// Pairs of overlapping leaves that the bodies' filters allow, each as
+    /// `(lower slot, higher slot)`, sorted.
+    fn candidates(&self) -> Vec<(u32, u32)> {
+        let mut pairs = self.moving.pairs();
+        pairs.extend(
+            self.moving.pairs_with(&self.resting).into_iter().map(|(a, b)| (a.min(b), a.max(b))),
+        );
+        let b = &self.bodies;
+        pairs.retain(|&(x, y)| {
+            let (x, y) = (x as usize, y as usize);
+            b.layers[x] & b.masks[y] != 0 && b.layers[y] & b.masks[x] != 0
+        });
+        pairs.par_sort_unstable();
+        pairs
+    }
+
+    /// The hull test on each pair, with its warm starts from last frame;
+    /// then the events, from the pairs that touch now and those that did.
+    /// Returns how many touch.
+    fn narrow_phase(&mut self, pairs: &[(u32, u32)]) -> usize {
+        let results: Vec<(PairState, Option<Contact>)> = pairs
+            .par_iter()
+            .with_min_len(PAIR_CHUNK)
+            .map(|&(a, b)| {
+                let mut state = self.pairs.get(&(a, b)).cloned().unwrap_or_default();
+                let contact = self.bodies.collide(a, b, &mut state);
+                (state, contact)
+            })
+            .collect();
+        let mut events = std::mem::take(&mut self.orphaned);
+        let mut next = std::collections::HashMap::with_capacity(pairs.len());
+        let mut touching = 0;
+        for (&(a, b), (mut state, contact)) in pairs.iter().zip(results) {
+            let was = self.pairs.remove(&(a, b)).is_some_and(|p| p.touching);
+            state.touching = contact.is_some();
+            touching += usize::from(state.touching);
+            let kind = match (was, state.touching) {
+                (false, true) => Some(EventKind::Began),
+                (true, true) => Some(EventKind::Persisting),
+                (true, false) => Some(EventKind::Ended),
+                (false, false) => None,
+            };
+            if let Some(kind) = kind {
+                events.push(ContactEvent { kind, a: self.id_of(a), b: self.id_of(b), contact });
+            }
+            next.insert((a, b), state);
+        }
+        // Pairs no longer candidates that touched have ended, unless both
+        // bodies rest: a pile that falls asleep keeps its contacts, unchanged
+        // and unreported, until one of them moves again.
+        let kinds = &self.bodies.kinds;
+        let resting = |(a, b): (u32, u32)| {
+            kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
+        };
+        for (key, state) in self.pairs.iter().filter(|(k, p)| p.touching && resting(**k)) {
+            next.insert(*key, state.clone());
+        }
+        let mut lost: Vec<(u32, u32)> = self
+            .pairs
+            .iter()
+            .filter(|(k, p)| p.touching && !resting(**k))
+            .map(|(&k, _)| k)
+            .collect();
+        lost.sort_unstable();
+        events.extend(
+            lost.into_iter().map(|(a, b)| ContactEvent::ended(self.id_of(a), self.id_of(b))),
+        );
+        events.sort_by_key(|e| (e.a.index, e.b.index));
+        self.pairs = next;
+        self.events = events;
+        touching
+    }
+}
+
+/// The tree leaf of a body: the overlap of the boxes around its world
+/// sphere and its world OBB, both of which hold it. The OBB's box is taken
+/// in f32 with a pad of 64 epsilons of the magnitudes (rounding, and the
+/// moved axes' departure from orthonormal), not by
+/// [`Obb::aabb`]'s exact corners: a leaf is rebuilt for every moved body
+/// every frame, and a box a few ulps larger costs the tree nothing.
+fn leaf_box(sphere: &Sphere, obb: &Obb) -> Aabb {
+    let (a, h, c) = (obb.axes, obb.half_extents, obb.center);
+    let extent = a.x_axis.abs() * h.x + a.y_axis.abs() * h.y + a.z_axis.abs() * h.z;
+    let pad = (extent + c.abs() + Vec3::splat(h.element_sum())) * (64.0 * f32::EPSILON);
+    let (lo, hi) = (c - extent - pad, c + extent + pad);
+    let r = sphere.radius * (1.0 + 2.0 * f32::EPSILON);
+    let (sl, sh) = (sphere.center - r, sphere.center + r);
+    Aabb::new(lo.max(sl - sl.abs() * f32::EPSILON), hi.min(sh + sh.abs() * f32::EPSILON))
+}
+
+/// The pairs for which `keep` holds, in order, tested in parallel chunks.
+fn filter(pairs: &[(u32, u32)], keep: impl Fn(usize, usize) -> bool + Sync) -> Vec<(u32, u32)> {
+    pairs
+        .par_chunks(PAIR_CHUNK)
+        .flat_map_iter(|chunk| chunk.iter().copied().filter(|&(a, b)| keep(a as usize, b as usize)))
+        .collect()
+}
+
+impl Bodies {
+    /// Whether the world spheres of two bodies overlap or touch. In f32 on
+    /// the structure-of-arrays centres and radii, with the sum of radii
+    /// padded by a few roundings so that no touching pair is lost.
+    #[inline]
+    fn spheres_overlap(&self, a: usize, b: usize) -> bool {
+        let d = self.centers[a] - self.centers[b];
+        let r = (self.radii[a] + self.radii[b]) * (1.0 + 4.0 * f32::EPSILON);
+        d.length_squared() <= r * r
+    }
+
+    /// How bodies `a` and `b` touch, if they do: the deepest contact over
+    /// their pairs of convex parts, the normal from `a` to `b`.
+    fn collide(&self, a: u32, b: u32, state: &mut PairState) -> Option<Contact> {
+        let (a, b) = (a as usize, b as usize);
+        let (shape_a, shape_b) = (self.shapes[a].as_ref()?, self.shapes[b].as_ref()?);
+        let (parts_a, parts_b) = (shape_a.parts(), shape_b.parts());
+        state.more.resize(parts_a.len() * parts_b.len() - 1, WarmStart::default());
+        let mut deepest: Option<Contact> = None;
+        for (i, pa) in parts_a.iter().enumerate() {
+            for (j, pb) in parts_b.iter().enumerate() {
+                let cache = match i * parts_b.len() + j {
+                    0 => &mut state.warm,
+                    k => &mut state.more[k - 1],
+                };
+                let found = part_contact(pa, &self.poses[a], pb, &self.poses[b], cache);
+                if let Some(c) = found.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
+                    deepest = Some(c);
+                }
+            }
+        }
+        deepest
+    }
+}
+
+/// How two convex parts touch, if they do, the normal from `pa` to `pb`.
+/// Poses were checked when set, so the tests cannot fail.
+fn part_contact(pa: &Part, a: &Pose, pb: &Part, b: &Pose, warm: &mut WarmStart) -> Option<Contact> {
+    let collision = match (pa, pb) {
+        (Part::Hull(x), Part::Hull(y)) => hull_hull(&x.polyhedron, a, &y.polyhedron, b, warm),
+        (Part::Ball(x), Part::Hull(y)) => sphere_hull(x, a, &y.polyhedron, b),
+        (Part::Hull(x), Part::Ball(y)) => sphere_hull(y, b, &x.polyhedron, a).map(flip),
+        (Part::Ball(x), Part::Ball(y)) => sphere_sphere(x, a, y, b),
+    };
+    collision.ok()?.contact().copied()
+}
+
+/// The same collision seen from the other body: the normal reversed.
+fn flip(c: Collision) -> Collision {
+    match c {
+        Collision::Separated { axis, distance } => Collision::Separated { axis: -axis, distance },
+        Collision::Touching(mut contact) => {
+            contact.normal = -contact.normal;
+            Collision::Touching(contact)
+        }
+    }
+}

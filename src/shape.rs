@@ -1,0 +1,312 @@
+//! Shapes: what a body is, in its own frame. Built once and shared between
+//! bodies (through `Arc`): the convex parts the narrow phase tests, and the
+//! bounding sphere and OBB of the whole, fitted by the methods the user picks.
+
+use std::fmt;
+use std::path::Path;
+
+use bvol_narrow::Polyhedron;
+use bvol_volumes::{ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
+use glam::{DVec3, Vec3};
+
+use crate::mesh::{Mesh, MeshError, load_obj};
+
+/// The fitting methods of a shape's bounds. The defaults are the tightest:
+/// the exact minimum sphere and the near-minimum-volume OBB.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub struct FitOptions {
+    /// How the bounding sphere is fitted.
+    pub sphere: SphereMethod,
+    /// How the oriented bounding box is fitted.
+    pub obb: ObbMethod,
+}
+
+impl Default for FitOptions {
+    fn default() -> Self {
+        FitOptions { sphere: SphereMethod::Exact, obb: ObbMethod::MinVolume }
+    }
+}
+
+/// One convex part of a shape, as the narrow phase tests it.
+#[derive(Clone, Debug)]
+pub enum Part {
+    /// A convex polyhedron: the hull of a mesh object or a primitive.
+    Hull(Box<HullPart>),
+    /// An exact ball.
+    Ball(Sphere),
+}
+
+/// A convex polyhedron part.
+#[derive(Clone, Debug)]
+pub struct HullPart {
+    /// What the separating-axis tests read.
+    pub polyhedron: Polyhedron,
+    /// Its faces as planes, for ray casts.
+    pub hull: ConvexHull,
+}
+
+/// A body's geometry in its own frame: convex parts (several when a mesh file
+/// has several objects, which is how a concave body is given), and the
+/// bounding sphere and OBB of all of them.
+///
+/// ```
+/// use bvol::Shape;
+/// use glam::Vec3;
+/// let crate_box = Shape::cuboid(Vec3::new(1.0, 0.5, 0.5))?;
+/// assert!((crate_box.sphere().radius - 1.5f32.sqrt()).abs() < 1e-5);
+/// assert!((crate_box.obb().volume() - 2.0).abs() < 1e-4);
+/// # Ok::<(), bvol::ShapeError>(())
+/// ```
+#[derive(Clone, Debug)]
+pub struct Shape {
+    parts: Vec<Part>,
+    sphere: Sphere,
+    obb: Obb,
+}
+
+/// Why a shape could not be built.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ShapeError {
+    /// The OBJ file could not be loaded.
+    Mesh(MeshError),
+    /// The file has no object of that name.
+    NoSuchObject {
+        /// The name asked for.
+        name: String,
+        /// The names the file has.
+        found: Vec<String>,
+    },
+    /// A part is not a solid or has bad coordinates.
+    Part {
+        /// The part's name (the mesh object's, or the primitive's).
+        part: String,
+        /// What is wrong with it.
+        reason: bvol_narrow::ShapeError,
+    },
+    /// The points could not be bounded.
+    Fit(FitError),
+    /// A primitive's size is not finite and positive.
+    BadSize {
+        /// The primitive.
+        primitive: &'static str,
+    },
+}
+
+impl fmt::Display for ShapeError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShapeError::Mesh(e) => e.fmt(f),
+            ShapeError::NoSuchObject { name, found } => {
+                write!(f, "no object named {name:?}; the file has {found:?}")
+            }
+            ShapeError::Part { part, reason } => write!(f, "part {part:?}: {reason}"),
+            ShapeError::Fit(e) => write!(f, "cannot bound the shape: {e}"),
+            ShapeError::BadSize { primitive } => {
+                write!(f, "{primitive}: sizes must be finite and greater than zero")
+            }
+        }
+    }
+}
+
+impl std::error::Error for ShapeError {}
+
+impl From<MeshError> for ShapeError {
+    fn from(e: MeshError) -> Self {
+        ShapeError::Mesh(e)
+    }
+}
+
+impl From<FitError> for ShapeError {
+    fn from(e: FitError) -> Self {
+        ShapeError::Fit(e)
+    }
+}
+
+/// Points on a unit sphere (a Fibonacci lattice): the hull of a capsule's
+/// caps. 64 points keep the hull within 2% of the round surface.
+const CAP_POINTS: usize = 64;
+
+impl Shape {
+    /// A shape of one convex part, the hull of `points`, with default fits.
+    pub fn convex(points: &[Vec3]) -> Result<Shape, ShapeError> {
+        Self::from_parts(vec![hull_part("points", points)?], FitOptions::default())
+    }
+
+    /// A shape with one convex part per mesh (the hull of its vertices).
+    pub fn from_meshes(meshes: &[Mesh], fit: FitOptions) -> Result<Shape, ShapeError> {
+        let parts = meshes
+            .iter()
+            .map(|m| hull_part(&m.name, &m.positions))
+            .collect::<Result<Vec<_>, _>>()?;
+        Self::from_parts(parts, fit)
+    }
+
+    /// Every object of an OBJ file, one convex part each.
+    pub fn from_obj(path: impl AsRef<Path>, fit: FitOptions) -> Result<Shape, ShapeError> {
+        Self::from_meshes(&load_obj(path)?, fit)
+    }
+
+    /// The object named `name` of an OBJ file, as one convex part.
+    pub fn from_obj_object(
+        path: impl AsRef<Path>,
+        name: &str,
+        fit: FitOptions,
+    ) -> Result<Shape, ShapeError> {
+        let meshes = load_obj(path)?;
+        match meshes.iter().find(|m| m.name == name) {
+            Some(m) => Self::from_meshes(std::slice::from_ref(m), fit),
+            None => Err(ShapeError::NoSuchObject {
+                name: name.to_owned(),
+                found: meshes.into_iter().map(|m| m.name).collect(),
+            }),
+        }
+    }
+
+    /// A box centred on the origin.
+    pub fn cuboid(half_extents: Vec3) -> Result<Shape, ShapeError> {
+        let polyhedron = Polyhedron::cuboid(half_extents)
+            .map_err(|reason| ShapeError::Part { part: "cuboid".into(), reason })?;
+        let hull = ConvexHull::new(polyhedron.vertices())?;
+        Self::from_parts(
+            vec![Part::Hull(Box::new(HullPart { polyhedron, hull }))],
+            FitOptions::default(),
+        )
+    }
+
+    /// A ball of `radius` centred on the origin, tested exactly.
+    pub fn ball(radius: f32) -> Result<Shape, ShapeError> {
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(ShapeError::BadSize { primitive: "ball" });
+        }
+        let sphere = Sphere::new(Vec3::ZERO, radius);
+        let h = Vec3::splat(radius);
+        let obb = Obb { center: Vec3::ZERO, axes: glam::Mat3::IDENTITY, half_extents: h };
+        Ok(Shape { parts: vec![Part::Ball(sphere)], sphere, obb })
+    }
+
+    /// A capsule along y (a segment of half length `half_height` swept by a
+    /// ball of `radius`), as a convex hull of its two capped ends.
+    pub fn capsule(radius: f32, half_height: f32) -> Result<Shape, ShapeError> {
+        if !(radius.is_finite() && radius > 0.0 && half_height.is_finite() && half_height >= 0.0) {
+            return Err(ShapeError::BadSize { primitive: "capsule" });
+        }
+        let points: Vec<Vec3> = fibonacci_sphere(CAP_POINTS)
+            .map(|p| p * radius + Vec3::Y * half_height.copysign(p.y))
+            .collect();
+        Self::from_parts(vec![hull_part("capsule", &points)?], FitOptions::default())
+    }
+
+    /// A regular tetrahedron with its corners at distance `radius` from the
+    /// origin.
+    pub fn tetrahedron(radius: f32) -> Result<Shape, ShapeError> {
+        if !(radius.is_finite() && radius > 0.0) {
+            return Err(ShapeError::BadSize { primitive: "tetrahedron" });
+        }
+        let s = radius / 3f32.sqrt();
+        let corners =
+            [Vec3::new(s, s, s), Vec3::new(s, -s, -s), Vec3::new(-s, s, -s), Vec3::new(-s, -s, s)];
+        Self::from_parts(vec![hull_part("tetrahedron", &corners)?], FitOptions::default())
+    }
+
+    /// The shape with its sphere and OBB refitted by other methods.
+    pub fn refit(&self, fit: FitOptions) -> Result<Shape, ShapeError> {
+        Self::from_parts(self.parts.clone(), fit)
+    }
+
+    /// The convex parts.
+    pub fn parts(&self) -> &[Part] {
+        &self.parts
+    }
+
+    /// The bounding sphere, in the shape's frame.
+    pub fn sphere(&self) -> Sphere {
+        self.sphere
+    }
+
+    /// The oriented bounding box, in the shape's frame.
+    pub fn obb(&self) -> Obb {
+        self.obb
+    }
+
+    /// The nearest `t` in `[0, max_t]` at which a ray in the shape's frame
+    /// meets a part (`0` when it starts inside one).
+    pub fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
+        self.parts
+            .iter()
+            .filter_map(|part| match part {
+                Part::Hull(part) => hull_ray_entry(&part.hull, ray, max_t),
+                Part::Ball(sphere) => sphere.ray_entry(ray, max_t),
+            })
+            .min_by(f32::total_cmp)
+    }
+
+    /// The bounds of the parts' points, by the chosen methods.
+    fn from_parts(parts: Vec<Part>, fit: FitOptions) -> Result<Shape, ShapeError> {
+        let points: Vec<Vec3> = parts.iter().flat_map(part_points).collect();
+        let sphere = Sphere::fit(&points, fit.sphere)?;
+        let obb = Obb::fit(&points, fit.obb)?;
+        Ok(Shape { parts, sphere, obb })
+    }
+}
+
+/// The convex part of a point set, named for errors.
+fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
+    let polyhedron = Polyhedron::from_points(points)
+        .map_err(|reason| ShapeError::Part { part: name.to_owned(), reason })?;
+    let hull = ConvexHull::new(points)?;
+    Ok(Part::Hull(Box::new(HullPart { polyhedron, hull })))
+}
+
+/// The points a part's bounds must hold: a hull's vertices, or a ball's
+/// six extreme points and the corners of its cube (the sphere fit of a
+/// ball alone is exact; the OBB is the cube).
+fn part_points(part: &Part) -> Vec<Vec3> {
+    match part {
+        Part::Hull(part) => part.polyhedron.vertices().to_vec(),
+        Part::Ball(s) => {
+            let r = s.radius;
+            let mut points: Vec<Vec3> =
+                [Vec3::X, Vec3::Y, Vec3::Z].iter().flat_map(|&a| [a * r, -a * r]).collect();
+            points.extend(fibonacci_sphere(CAP_POINTS).map(|p| p * r));
+            points.into_iter().map(|p| s.center + p).collect()
+        }
+    }
+}
+
+/// `n` points spread evenly on the unit sphere (the Fibonacci lattice).
+fn fibonacci_sphere(n: usize) -> impl Iterator<Item = Vec3> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n).map(move |i| {
+        let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let r = (1.0 - y * y).sqrt();
+        let a = golden * i as f64;
+        DVec3::new(r * a.cos(), y, r * a.sin()).as_vec3()
+    })
+}
+
+/// Where a ray enters a solid hull: the ray's parameter interval clipped by
+/// every face plane (Ericson 5.3.8), in f64.
+fn hull_ray_entry(hull: &ConvexHull, ray: &Ray, max_t: f32) -> Option<f32> {
+    if !(ray.origin.is_finite() && ray.direction.is_finite() && max_t >= 0.0) {
+        return None;
+    }
+    let (o, d) = (ray.origin.as_dvec3(), ray.direction.as_dvec3());
+    let (mut enter, mut exit) = (0.0f64, max_t as f64);
+    for f in 0..hull.face_count() {
+        let (n, offset) = (hull.face_normal(f), hull.face_offset(f));
+        let (dist, rate) = (n.dot(o) - offset, n.dot(d));
+        if rate == 0.0 {
+            if dist > 0.0 {
+                return None;
+            }
+        } else {
+            let t = -dist / rate;
+            if rate < 0.0 { enter = enter.max(t) } else { exit = exit.min(t) }
+        }
+        if enter > exit {
+            return None;
+        }
+    }
+    Some(enter as f32)
+}

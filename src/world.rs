@@ -1,0 +1,338 @@
+//! The world: bodies in structure-of-arrays slots, their world bounds, the
+//! two trees (moving bodies, and resting ones: static and sleeping), and the
+//! per-pair state the frame keeps.
+
+use std::collections::HashMap;
+use std::sync::Arc;
+
+use bvol_narrow::WarmStart;
+use bvol_tree::Tree;
+use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere};
+use glam::Vec3;
+
+use crate::frame::{ContactEvent, FrameStats};
+use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
+
+/// Bodies that collide: add them, move them, and [`update`](World::update)
+/// once per frame for the contacts that began, persist and ended (see the
+/// crate docs for a whole loop).
+///
+/// ```
+/// use std::sync::Arc;
+/// use bvol::volumes::{Pose, Ray};
+/// use bvol::{BodyDesc, Shape, World};
+/// use glam::{Quat, Vec3};
+///
+/// let mut world = World::new();
+/// let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5))?);
+/// let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY).with_user_data(7))?;
+/// world.add_body(BodyDesc::new(cube, Pose::new(Vec3::X * 0.9, Quat::IDENTITY)))?;
+/// world.update();
+/// assert_eq!(world.events().len(), 1); // the two cubes overlap by 0.1
+/// let hit = world.ray_cast(&Ray::new(Vec3::new(-5.0, 0.0, 0.0), Vec3::X), 100.0).unwrap();
+/// assert_eq!((hit.body, hit.user_data), (a, 7));
+/// assert!((hit.t - 4.5).abs() < 1e-5);
+/// # Ok::<(), Box<dyn std::error::Error>>(())
+/// ```
+#[derive(Debug, Default)]
+pub struct World {
+    pub(crate) bodies: Bodies,
+    /// Dynamic bodies, by slot.
+    pub(crate) moving: Tree<Aabb>,
+    /// Static and sleeping bodies, by slot: never tested against each other.
+    pub(crate) resting: Tree<Aabb>,
+    /// State of each pair that reached the narrow phase last frame, by
+    /// `(lower slot, higher slot)`.
+    pub(crate) pairs: HashMap<(u32, u32), PairState>,
+    /// Pairs that touched and lost a body since the last update.
+    pub(crate) orphaned: Vec<ContactEvent>,
+    pub(crate) events: Vec<ContactEvent>,
+    pub(crate) stats: FrameStats,
+}
+
+/// What a pair carries from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PairState {
+    /// The warm start of the first pair of convex parts: the only one of
+    /// most pairs, kept inline so that no pair allocates.
+    pub(crate) warm: WarmStart,
+    /// Those of the other pairs of parts, for shapes of several.
+    pub(crate) more: Vec<WarmStart>,
+    /// Whether it touched.
+    pub(crate) touching: bool,
+}
+
+/// The bodies, one slot each, in structure-of-arrays form: each stage of a
+/// frame reads only the arrays it needs.
+#[derive(Debug, Default)]
+pub(crate) struct Bodies {
+    pub(crate) shapes: Vec<Option<Arc<Shape>>>,
+    pub(crate) generations: Vec<u32>,
+    pub(crate) poses: Vec<Pose>,
+    pub(crate) kinds: Vec<BodyKind>,
+    pub(crate) user_data: Vec<u64>,
+    pub(crate) layers: Vec<u32>,
+    pub(crate) masks: Vec<u32>,
+    /// World bounding spheres: centres and radii apart, for the sphere test.
+    pub(crate) centers: Vec<Vec3>,
+    pub(crate) radii: Vec<f32>,
+    /// World oriented boxes.
+    pub(crate) obbs: Vec<Obb>,
+    /// Free slots, the last freed taken first.
+    pub(crate) free: Vec<u32>,
+    /// Slots whose pose changed since the last update, each once.
+    pub(crate) dirty: Vec<u32>,
+    pub(crate) is_dirty: Vec<bool>,
+    pub(crate) count: usize,
+}
+
+impl World {
+    /// An empty world.
+    pub fn new() -> Self {
+        Self::default()
+    }
+
+    /// Number of bodies.
+    pub fn len(&self) -> usize {
+        self.bodies.count
+    }
+
+    /// Whether there is no body.
+    pub fn is_empty(&self) -> bool {
+        self.bodies.count == 0
+    }
+
+    /// Adds a body. Its bounds enter the trees at the next update.
+    pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyId, WorldError> {
+        let b = &mut self.bodies;
+        let index = match b.free.last() {
+            Some(&i) => i,
+            None if b.shapes.len() < Tree::<Aabb>::ID_LIMIT as usize => b.shapes.len() as u32,
+            None => return Err(WorldError::Full),
+        };
+        let generation = b.generations.get(index as usize).copied().unwrap_or(0);
+        let id = BodyId { index, generation };
+        check_pose(id, &desc.pose)?;
+        if b.free.pop().is_none() {
+            b.grow();
+        }
+        let i = index as usize;
+        b.poses[i] = desc.pose;
+        b.kinds[i] = desc.kind;
+        b.user_data[i] = desc.user_data;
+        b.layers[i] = desc.layers;
+        b.masks[i] = desc.mask;
+        b.shapes[i] = Some(desc.shape);
+        b.count += 1;
+        b.mark_dirty(index);
+        Ok(id)
+    }
+
+    /// Removes a body. Its contacts end at the next update.
+    pub fn remove_body(&mut self, id: BodyId) -> Result<(), WorldError> {
+        let i = self.slot(id)?;
+        self.tree_of(self.bodies.kinds[i]).remove(id.index).ok();
+        let mut gone: Vec<(u32, u32)> =
+            self.pairs.keys().filter(|&&(a, b)| a == id.index || b == id.index).copied().collect();
+        gone.sort_unstable();
+        for key in gone {
+            if self.pairs.remove(&key).is_some_and(|p| p.touching) {
+                self.orphaned.push(ContactEvent::ended(self.id_of(key.0), self.id_of(key.1)));
+            }
+        }
+        let b = &mut self.bodies;
+        b.shapes[i] = None;
+        b.generations[i] = b.generations[i].wrapping_add(1);
+        b.free.push(id.index);
+        b.count -= 1;
+        Ok(())
+    }
+
+    /// Moves one body.
+    pub fn set_pose(&mut self, id: BodyId, pose: Pose) -> Result<(), WorldError> {
+        self.set_poses(&[id], &[pose])
+    }
+
+    /// Moves many bodies: `poses[k]` is the new pose of `ids[k]`. Every id
+    /// and pose is checked first: on error nothing has moved.
+    pub fn set_poses(&mut self, ids: &[BodyId], poses: &[Pose]) -> Result<(), WorldError> {
+        if ids.len() != poses.len() {
+            return Err(WorldError::LengthMismatch { bodies: ids.len(), poses: poses.len() });
+        }
+        for (&id, pose) in ids.iter().zip(poses) {
+            self.slot(id)?;
+            check_pose(id, pose)?;
+        }
+        for (&id, &pose) in ids.iter().zip(poses) {
+            self.bodies.poses[id.index as usize] = pose;
+            self.bodies.mark_dirty(id.index);
+        }
+        Ok(())
+    }
+
+    /// Changes how a body takes part: a sleeping or static body moves to
+    /// the resting tree, a dynamic one to the moving tree.
+    pub fn set_kind(&mut self, id: BodyId, kind: BodyKind) -> Result<(), WorldError> {
+        let i = self.slot(id)?;
+        let old = self.bodies.kinds[i];
+        if (old == BodyKind::Dynamic) != (kind == BodyKind::Dynamic) {
+            self.tree_of(old).remove(id.index).ok();
+            self.bodies.mark_dirty(id.index);
+        }
+        self.bodies.kinds[i] = kind;
+        Ok(())
+    }
+
+    /// A body's pose.
+    pub fn pose(&self, id: BodyId) -> Result<Pose, WorldError> {
+        Ok(self.bodies.poses[self.slot(id)?])
+    }
+
+    /// A body's kind.
+    pub fn kind(&self, id: BodyId) -> Result<BodyKind, WorldError> {
+        Ok(self.bodies.kinds[self.slot(id)?])
+    }
+
+    /// A body's user data.
+    pub fn user_data(&self, id: BodyId) -> Result<u64, WorldError> {
+        Ok(self.bodies.user_data[self.slot(id)?])
+    }
+
+    /// A body's shape.
+    pub fn shape(&self, id: BodyId) -> Result<&Arc<Shape>, WorldError> {
+        let i = self.slot(id)?;
+        Ok(self.bodies.shapes[i].as_ref().expect("slot checked"))
+    }
+
+    /// A body's bounding sphere in the world, as of the last update.
+    pub fn world_sphere(&self, id: BodyId) -> Result<Sphere, WorldError> {
+        let i = self.slot(id)?;
+        Ok(Sphere::new(self.bodies.centers[i], self.bodies.radii[i]))
+    }
+
+    /// A body's oriented bounding box in the world, as of the last update.
+    pub fn world_obb(&self, id: BodyId) -> Result<Obb, WorldError> {
+        Ok(self.bodies.obbs[self.slot(id)?])
+    }
+
+    /// Every body, in slot order.
+    pub fn bodies(&self) -> impl Iterator<Item = BodyId> + '_ {
+        let b = &self.bodies;
+        (0..b.shapes.len())
+            .filter(|&i| b.shapes[i].is_some())
+            .map(|i| BodyId { index: i as u32, generation: b.generations[i] })
+    }
+
+    /// The dynamic bodies' tree (its leaves are slots), for inspection.
+    pub fn moving_tree(&self) -> &Tree<Aabb> {
+        &self.moving
+    }
+
+    /// The static and sleeping bodies' tree, for inspection.
+    pub fn resting_tree(&self) -> &Tree<Aabb> {
+        &self.resting
+    }
+
+    /// The nearest body a ray meets within `max_t`, as of the last update:
+    /// the trees give candidates nearest first, each tested on its OBB and
+    /// then on its shape. Ties go to the lower slot.
+    pub fn ray_cast(&self, ray: &Ray, max_t: f32) -> Option<RayHit> {
+        let exact = |slot: u32, _| self.ray_entry(slot, ray, max_t);
+        let hits =
+            [self.moving.ray_cast(ray, max_t, exact), self.resting.ray_cast(ray, max_t, exact)];
+        let (slot, t) =
+            hits.into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))?;
+        let body = self.id_of(slot);
+        let user_data = self.bodies.user_data[slot as usize];
+        Some(RayHit { body, t, point: ray.origin + ray.direction * t, user_data })
+    }
+
+    /// Where a ray meets body `slot`: its world OBB first, then its shape in
+    /// the body's frame (a rigid map keeps the ray's parameter).
+    fn ray_entry(&self, slot: u32, ray: &Ray, max_t: f32) -> Option<f32> {
+        let i = slot as usize;
+        self.bodies.obbs[i].ray_entry(ray, max_t)?;
+        let inverse = self.bodies.poses[i].inverse();
+        let local =
+            Ray::new(inverse.transform_point(ray.origin), inverse.transform_vector(ray.direction));
+        self.bodies.shapes[i].as_ref()?.ray_entry(&local, max_t)
+    }
+
+    /// The events of the last update: contacts that began, persisted and
+    /// ended, ordered by the bodies' slots.
+    pub fn events(&self) -> &[ContactEvent] {
+        &self.events
+    }
+
+    /// The counts and times of the last update's stages.
+    pub fn stats(&self) -> &FrameStats {
+        &self.stats
+    }
+
+    /// The slot of a live body.
+    pub(crate) fn slot(&self, id: BodyId) -> Result<usize, WorldError> {
+        let i = id.index as usize;
+        let b = &self.bodies;
+        if b.shapes.get(i).is_some_and(Option::is_some) && b.generations[i] == id.generation {
+            Ok(i)
+        } else {
+            Err(WorldError::UnknownBody(id))
+        }
+    }
+
+    /// The handle of the body in `slot` now.
+    pub(crate) fn id_of(&self, slot: u32) -> BodyId {
+        BodyId { index: slot, generation: self.bodies.generations[slot as usize] }
+    }
+
+    /// The tree that holds bodies of `kind`.
+    pub(crate) fn tree_of(&mut self, kind: BodyKind) -> &mut Tree<Aabb> {
+        if kind == BodyKind::Dynamic { &mut self.moving } else { &mut self.resting }
+    }
+}
+
+/// Where a ray met a body.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RayHit {
+    /// The body.
+    pub body: BodyId,
+    /// The ray's parameter at the hit (a distance for a unit direction).
+    pub t: f32,
+    /// The hit point.
+    pub point: Vec3,
+    /// The body's user data.
+    pub user_data: u64,
+}
+
+impl Bodies {
+    /// One more slot, empty.
+    fn grow(&mut self) {
+        self.shapes.push(None);
+        self.generations.push(0);
+        self.poses.push(Pose::IDENTITY);
+        self.kinds.push(BodyKind::Dynamic);
+        self.user_data.push(0);
+        self.layers.push(0);
+        self.masks.push(0);
+        self.centers.push(Vec3::ZERO);
+        self.radii.push(0.0);
+        self.obbs.push(Obb {
+            center: Vec3::ZERO,
+            axes: glam::Mat3::IDENTITY,
+            half_extents: Vec3::ZERO,
+        });
+        self.is_dirty.push(false);
+    }
+
+    /// Queues a slot for the next update's refit.
+    fn mark_dirty(&mut self, slot: u32) {
+        if !std::mem::replace(&mut self.is_dirty[slot as usize], true) {
+            self.dirty.push(slot);
+        }
+    }
+}
+
+/// `Ok` when `pose` is finite with a non-zero rotation.
+fn check_pose(body: BodyId, pose: &Pose) -> Result<(), WorldError> {
+    if pose.is_finite() { Ok(()) } else { Err(WorldError::BadPose { body, pose: *pose }) }
+}

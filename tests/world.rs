@@ -1,0 +1,414 @@
+//! The World's pipeline against brute force: the touching set of every frame
+//! equals an all-pairs hull test, the events are the difference of touching
+//! sets, the OBB stage removes candidates the boxes of the tree let through,
+//! ray casts find the nearest body, bad input is a typed error, and the
+//! result does not depend on the number of threads.
+
+use std::collections::BTreeSet;
+use std::path::PathBuf;
+use std::sync::Arc;
+
+use bvol::narrow::{WarmStart, hull_hull, sphere_hull, sphere_sphere};
+use bvol::volumes::{Pose, Ray};
+use bvol::{
+    BodyDesc, BodyId, BodyKind, EventKind, FitOptions, MeshProblem, Part, Shape, ShapeError, World,
+    WorldError,
+};
+use glam::{Quat, Vec3};
+use rand::rngs::SmallRng;
+use rand::{RngExt, SeedableRng};
+
+fn mesh(name: &str) -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/meshes").join(format!("{name}.obj"))
+}
+
+/// A mix of shapes: boxes, a rod, a tetrahedron, a capsule, a ball, the
+/// bunny's hull scaled down, and a two-part shape (two objects of one file).
+fn shapes() -> Vec<Arc<Shape>> {
+    let bunny = bvol::load_obj(mesh("bunny")).unwrap();
+    let small: Vec<Vec3> = bunny[0].positions.iter().map(|&p| p * 0.1).collect();
+    let mut two = bvol::Mesh { name: "left".into(), ..Default::default() };
+    two.positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+    let mut right = two.clone();
+    right.name = "right".into();
+    right.positions.iter_mut().for_each(|p| *p += Vec3::new(1.5, 0.0, 0.0));
+    vec![
+        Shape::cuboid(Vec3::splat(0.5)).unwrap(),
+        Shape::cuboid(Vec3::new(1.5, 0.1, 0.1)).unwrap(),
+        Shape::tetrahedron(0.7).unwrap(),
+        Shape::capsule(0.3, 0.5).unwrap(),
+        Shape::ball(0.5).unwrap(),
+        Shape::convex(&small).unwrap(),
+        Shape::from_meshes(&[two, right], FitOptions::default()).unwrap(),
+    ]
+    .into_iter()
+    .map(Arc::new)
+    .collect()
+}
+
+fn random_pose(rng: &mut SmallRng, side: f32) -> Pose {
+    let p = Vec3::new(rng.random(), rng.random(), rng.random()) * side;
+    let q = Quat::from_xyzw(
+        rng.random::<f32>() - 0.5,
+        rng.random::<f32>() - 0.5,
+        rng.random::<f32>() - 0.5,
+        rng.random::<f32>() - 0.5,
+    );
+    Pose::new(p, q.normalize())
+}
+
+/// The touching pairs by brute force: every pair of bodies whose vertex boxes
+/// (computed here from the shapes' parts, not the world's bounds) overlap,
+/// tested part by part with the narrow phase, no warm start.
+fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
+    let ids: Vec<BodyId> = world.bodies().collect();
+    let boxes: Vec<(Vec3, Vec3)> = ids
+        .iter()
+        .map(|&id| {
+            let pose = world.pose(id).unwrap();
+            let shape = world.shape(id).unwrap();
+            let mut lo = Vec3::INFINITY;
+            let mut hi = Vec3::NEG_INFINITY;
+            for part in shape.parts() {
+                match part {
+                    Part::Hull(h) => {
+                        for &v in h.polyhedron.vertices() {
+                            let w = pose.transform_point(v);
+                            (lo, hi) = (lo.min(w), hi.max(w));
+                        }
+                    }
+                    Part::Ball(s) => {
+                        let c = pose.transform_point(s.center);
+                        (lo, hi) = (lo.min(c - s.radius), hi.max(c + s.radius));
+                    }
+                }
+            }
+            let pad = 1e-4 * (hi - lo).max_element();
+            (lo - pad, hi + pad)
+        })
+        .collect();
+    let mut touching = BTreeSet::new();
+    for i in 0..ids.len() {
+        for j in i + 1..ids.len() {
+            let (a, b) = (ids[i], ids[j]);
+            let (ka, kb) = (world.kind(a).unwrap(), world.kind(b).unwrap());
+            if ka != BodyKind::Dynamic && kb != BodyKind::Dynamic {
+                continue;
+            }
+            let ((la, ha), (lb, hb)) = (boxes[i], boxes[j]);
+            if la.cmpgt(hb).any() || lb.cmpgt(ha).any() {
+                continue;
+            }
+            if touch(world, a, b) {
+                touching.insert((a.index(), b.index()));
+            }
+        }
+    }
+    touching
+}
+
+/// Whether two bodies touch, part by part.
+fn touch(world: &World, a: BodyId, b: BodyId) -> bool {
+    let (pa, pb) = (world.pose(a).unwrap(), world.pose(b).unwrap());
+    let (sa, sb) = (world.shape(a).unwrap(), world.shape(b).unwrap());
+    sa.parts().iter().any(|x| {
+        sb.parts().iter().any(|y| {
+            let c = match (x, y) {
+                (Part::Hull(x), Part::Hull(y)) => {
+                    hull_hull(&x.polyhedron, &pa, &y.polyhedron, &pb, &mut WarmStart::default())
+                }
+                (Part::Ball(x), Part::Hull(y)) => sphere_hull(x, &pa, &y.polyhedron, &pb),
+                (Part::Hull(x), Part::Ball(y)) => sphere_hull(y, &pb, &x.polyhedron, &pa),
+                (Part::Ball(x), Part::Ball(y)) => sphere_sphere(x, &pa, y, &pb),
+            };
+            c.unwrap().is_touching()
+        })
+    })
+}
+
+/// A random world of `n` bodies in a cube dense enough for about one
+/// contact a body, a tenth of them static.
+fn random_world(n: usize, seed: u64) -> (World, Vec<BodyId>, SmallRng) {
+    let mut rng = SmallRng::seed_from_u64(seed);
+    let shapes = shapes();
+    let side = (n as f32).cbrt() * 1.6;
+    let mut world = World::new();
+    let mut ids = Vec::new();
+    for k in 0..n {
+        let shape = shapes[rng.random_range(0..shapes.len())].clone();
+        let kind = if k % 10 == 0 { BodyKind::Static } else { BodyKind::Dynamic };
+        let desc = BodyDesc::new(shape, random_pose(&mut rng, side)).with_kind(kind);
+        ids.push(world.add_body(desc.with_user_data(k as u64)).unwrap());
+    }
+    (world, ids, rng)
+}
+
+/// Moves every dynamic body a little (and a few far), as a frame would.
+fn step(world: &mut World, ids: &[BodyId], rng: &mut SmallRng) {
+    let side = (ids.len() as f32).cbrt() * 1.6;
+    let mut moved = Vec::new();
+    let mut poses = Vec::new();
+    for &id in ids {
+        if world.kind(id).unwrap() != BodyKind::Dynamic {
+            continue;
+        }
+        let pose = world.pose(id).unwrap();
+        let next = if rng.random::<f32>() < 0.02 {
+            random_pose(rng, side)
+        } else {
+            let d = (Vec3::new(rng.random(), rng.random(), rng.random()) - 0.5) * 0.3;
+            let spin = Quat::from_rotation_y((rng.random::<f32>() - 0.5) * 0.2);
+            Pose::new(pose.position + d, (spin * pose.rotation).normalize())
+        };
+        moved.push(id);
+        poses.push(next);
+    }
+    world.set_poses(&moved, &poses).unwrap();
+}
+
+/// The touching pairs the world reports, from its events.
+fn touching_of(world: &World) -> BTreeSet<(u32, u32)> {
+    world
+        .events()
+        .iter()
+        .filter(|e| e.kind != EventKind::Ended)
+        .map(|e| (e.a.index(), e.b.index()))
+        .collect()
+}
+
+#[test]
+fn touching_pairs_equal_brute_force_every_frame() {
+    for (n, frames, seed) in [(200, 12, 1), (1000, 6, 2), (5000, 3, 3)] {
+        let (mut world, ids, mut rng) = random_world(n, seed);
+        let mut before = BTreeSet::new();
+        let mut total = 0;
+        for _ in 0..frames {
+            let stats = *world.update();
+            let now = touching_of(&world);
+            assert_eq!(now, brute_force(&world), "n = {n}");
+            // Each stage passes on a subset of the one before.
+            assert!(stats.tree_candidates >= stats.after_spheres);
+            assert!(stats.after_spheres >= stats.after_obbs);
+            assert!(stats.after_obbs >= stats.touching);
+            assert_eq!(stats.touching, now.len());
+            // Events are the difference of the touching sets.
+            let kinds = |k: EventKind| -> BTreeSet<(u32, u32)> {
+                let events = world.events().iter().filter(|e| e.kind == k);
+                events.map(|e| (e.a.index(), e.b.index())).collect()
+            };
+            assert_eq!(kinds(EventKind::Began), &now - &before);
+            assert_eq!(kinds(EventKind::Ended), &before - &now);
+            assert_eq!(kinds(EventKind::Persisting), &now & &before);
+            total += now.len();
+            before = now;
+            step(&mut world, &ids, &mut rng);
+        }
+        assert!(total > n / 4, "n = {n}: too few contacts ({total}) to prove much");
+    }
+}
+
+#[test]
+fn moving_b_along_the_normal_by_the_depth_separates_them() {
+    let (mut world, _, _) = random_world(1000, 4);
+    world.update();
+    let mut checked = 0;
+    for e in world.events() {
+        let c = e.contact.unwrap();
+        assert!((c.normal.length() - 1.0).abs() < 1e-4);
+        // Moving B along the normal by more than the depth separates them,
+        // when A and B are single hulls.
+        let (pa, pb) = (world.pose(e.a).unwrap(), world.pose(e.b).unwrap());
+        let (sa, sb) = (world.shape(e.a).unwrap(), world.shape(e.b).unwrap());
+        if let ([Part::Hull(x)], [Part::Hull(y)]) = (sa.parts(), sb.parts()) {
+            let size = world.world_sphere(e.a).unwrap().radius;
+            let apart = Pose::new(pb.position + c.normal * (c.depth + 1e-3 * size), pb.rotation);
+            let test =
+                hull_hull(&x.polyhedron, &pa, &y.polyhedron, &apart, &mut WarmStart::default());
+            assert!(!test.unwrap().is_touching(), "{e:?}");
+            checked += 1;
+        }
+    }
+    assert!(checked > 50, "{checked}");
+}
+
+#[test]
+fn obb_stage_removes_candidates_the_tree_lets_through() {
+    // Long thin rods at random angles: their boxes and spheres overlap far
+    // more often than they do.
+    let mut rng = SmallRng::seed_from_u64(5);
+    let rod = Arc::new(Shape::cuboid(Vec3::new(2.0, 0.05, 0.05)).unwrap());
+    let bunny = Arc::new(Shape::from_obj(mesh("bunny"), FitOptions::default()).unwrap());
+    let mut world = World::new();
+    for k in 0..2000 {
+        let shape = if k % 4 == 0 { bunny.clone() } else { rod.clone() };
+        let mut pose = random_pose(&mut rng, 25.0);
+        if k % 4 == 0 {
+            pose.position *= 4.0; // bunnies are about 15 units across
+        }
+        world.add_body(BodyDesc::new(shape, pose)).unwrap();
+    }
+    let s = *world.update();
+    let (c, sp, ob) = (s.tree_candidates as f64, s.after_spheres as f64, s.after_obbs as f64);
+    println!(
+        "candidates {c}, spheres remove {:.1}%, OBBs remove {:.1}% of the rest, touching {}",
+        100.0 * (1.0 - sp / c),
+        100.0 * (1.0 - ob / sp),
+        s.touching
+    );
+    assert!(s.after_obbs < s.after_spheres && s.after_spheres < s.tree_candidates);
+    assert!(ob < 0.8 * c, "the OBB stage should remove a good share of the candidates");
+    assert_eq!(touching_of(&world), brute_force(&world));
+}
+
+#[test]
+fn same_events_on_one_and_two_threads() {
+    let run = |threads: usize| {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let (mut world, ids, mut rng) = random_world(3000, 6);
+            let mut all = Vec::new();
+            for _ in 0..4 {
+                world.update();
+                all.extend_from_slice(world.events());
+                step(&mut world, &ids, &mut rng);
+            }
+            all
+        })
+    };
+    let (one, two) = (run(1), run(2));
+    assert!(one.len() > 1000);
+    assert_eq!(one, two);
+}
+
+#[test]
+fn ray_cast_finds_the_nearest_body() {
+    let (mut world, ids, mut rng) = random_world(500, 7);
+    world.update();
+    let side = 500f32.cbrt() * 1.6;
+    let mut hits = 0;
+    for _ in 0..300 {
+        let origin = Vec3::new(rng.random(), rng.random(), rng.random()) * side * 1.5 - side * 0.25;
+        let to = Vec3::new(rng.random(), rng.random(), rng.random()) * side;
+        let ray = Ray::new(origin, (to - origin).normalize());
+        // Brute force: every body's shape in its own frame.
+        let expected = ids
+            .iter()
+            .filter_map(|&id| {
+                let inv = world.pose(id).unwrap().inverse();
+                let local =
+                    Ray::new(inv.transform_point(ray.origin), inv.transform_vector(ray.direction));
+                Some((world.shape(id).unwrap().ray_entry(&local, 1e3)?, id))
+            })
+            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.index().cmp(&b.1.index())));
+        let got = world.ray_cast(&ray, 1e3);
+        match (got, expected) {
+            (Some(h), Some((t, id))) => {
+                assert!((h.t - t).abs() <= 1e-4 * t.max(1.0), "{h:?} vs {t} {id}");
+                assert_eq!(h.user_data, world.user_data(h.body).unwrap());
+                hits += 1;
+            }
+            (None, None) => {}
+            other => panic!("{other:?}"),
+        }
+    }
+    assert!(hits > 100, "{hits}");
+}
+
+#[test]
+fn bad_input_is_a_typed_error_and_changes_nothing() {
+    let mut world = World::new();
+    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
+    let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY)).unwrap();
+    let nan = Pose::new(Vec3::new(f32::NAN, 0.0, 0.0), Quat::IDENTITY);
+    assert!(matches!(
+        world.add_body(BodyDesc::new(cube.clone(), nan)),
+        Err(WorldError::BadPose { .. })
+    ));
+    let zero = Pose::new(Vec3::ZERO, Quat::from_xyzw(0.0, 0.0, 0.0, 0.0));
+    let b = world
+        .add_body(BodyDesc::new(cube.clone(), Pose::new(Vec3::X * 0.9, Quat::IDENTITY)))
+        .unwrap();
+    let err = world.set_poses(&[a, b], &[Pose::IDENTITY, zero]).unwrap_err();
+    assert_eq!(err, WorldError::BadPose { body: b, pose: zero });
+    assert_eq!(world.pose(b).unwrap().position, Vec3::X * 0.9, "nothing moved");
+    assert_eq!(
+        world.set_poses(&[a], &[]).unwrap_err(),
+        WorldError::LengthMismatch { bodies: 1, poses: 0 }
+    );
+    world.update();
+    assert_eq!(touching_of(&world).len(), 1);
+    world.remove_body(b).unwrap();
+    assert_eq!(world.remove_body(b), Err(WorldError::UnknownBody(b)));
+    assert_eq!(world.pose(b), Err(WorldError::UnknownBody(b)));
+    // The slot is reused; the old handle stays dead.
+    let c = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::X * 5.0, Quat::IDENTITY))).unwrap();
+    assert_eq!(c.index(), b.index());
+    assert!(world.pose(b).is_err());
+    world.update();
+    let ended: Vec<_> = world.events().iter().map(|e| (e.kind, e.a, e.b)).collect();
+    assert_eq!(ended, vec![(EventKind::Ended, a, b)]);
+    // Shapes: degenerate parts and bad sizes.
+    let flat = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::ONE.with_z(0.0)];
+    assert!(matches!(Shape::convex(&flat), Err(ShapeError::Part { .. })));
+    assert!(matches!(Shape::ball(-1.0), Err(ShapeError::BadSize { .. })));
+    assert!(matches!(Shape::capsule(f32::NAN, 1.0), Err(ShapeError::BadSize { .. })));
+    assert!(matches!(Shape::cuboid(Vec3::ZERO), Err(ShapeError::Part { .. })));
+}
+
+#[test]
+fn obj_files_load_or_give_typed_errors_naming_the_file() {
+    for name in ["teapot", "airplane", "bunny", "wuson", "duck"] {
+        let shape = Shape::from_obj(mesh(name), FitOptions::default()).unwrap();
+        assert!(!shape.parts().is_empty(), "{name}");
+    }
+    let dir = std::env::temp_dir().join(format!("bvol-world-test-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let file = |name: &str, text: &str| {
+        let path = dir.join(name);
+        std::fs::write(&path, text).unwrap();
+        path
+    };
+    let cases = [
+        (dir.join("missing.obj"), "read"),
+        (file("broken.obj", "v 1 2\nf 1 2 3\n"), "parse"),
+        (file("empty.obj", "o nothing\n"), "empty"),
+        (file("nan.obj", "v 0 0 0\nv 1 nan 0\nv 0 1 0\nv 0 0 1\nf 1 2 3\nf 1 2 4\n"), "nan"),
+        (file("index.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 9\n"), "index"),
+    ];
+    for (path, what) in cases {
+        match Shape::from_obj(&path, FitOptions::default()) {
+            Err(ShapeError::Mesh(e)) => {
+                assert_eq!(e.path, path, "{what}");
+                assert!(e.to_string().contains(path.to_str().unwrap()), "{what}: {e}");
+                if what == "nan" {
+                    assert!(matches!(e.problem, MeshProblem::NonFinite { .. }));
+                }
+            }
+            other => panic!("{what}: {other:?}"),
+        }
+    }
+    let err = Shape::from_obj_object(mesh("bunny"), "no such", FitOptions::default()).unwrap_err();
+    assert!(matches!(err, ShapeError::NoSuchObject { .. }), "{err}");
+    std::fs::remove_dir_all(&dir).ok();
+}
+
+#[test]
+fn resting_pairs_keep_their_contact_until_they_move() {
+    let mut world = World::new();
+    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
+    let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY)).unwrap();
+    let b = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::Y * 0.99, Quat::IDENTITY))).unwrap();
+    let kinds = |w: &World| w.events().iter().map(|e| e.kind).collect::<Vec<_>>();
+    world.update();
+    assert_eq!(kinds(&world), [EventKind::Began]);
+    world.set_kind(a, BodyKind::Sleeping).unwrap();
+    world.set_kind(b, BodyKind::Sleeping).unwrap();
+    world.update();
+    assert_eq!(kinds(&world), [], "asleep: no test, no event");
+    world.set_kind(b, BodyKind::Dynamic).unwrap();
+    world.update();
+    assert_eq!(kinds(&world), [EventKind::Persisting]);
+    world.set_pose(b, Pose::new(Vec3::Y * 3.0, Quat::IDENTITY)).unwrap();
+    world.update();
+    assert_eq!(kinds(&world), [EventKind::Ended]);
+}
