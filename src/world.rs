@@ -237,7 +237,10 @@ impl World {
     /// the trees give candidates nearest first, each tested on its OBB and
     /// then on its shape. Ties go to the lower slot.
     pub fn ray_cast(&self, ray: &Ray, max_t: f32) -> Option<RayHit> {
-        let exact = |slot: u32, _| self.ray_entry(slot, ray, max_t);
+        // The shape lies inside its leaf: its entry is never before the
+        // leaf's, but rounding may say so by an ulp, and the tree's search
+        // needs it not to.
+        let exact = |slot: u32, t: f32| self.ray_entry(slot, ray, max_t).map(|d| d.max(t));
         let hits =
             [self.moving.ray_cast(ray, max_t, exact), self.resting.ray_cast(ray, max_t, exact)];
         let (slot, t) =

@@ -412,3 +412,20 @@ fn resting_pairs_keep_their_contact_until_they_move() {
     world.update();
     assert_eq!(kinds(&world), [EventKind::Ended]);
 }
+
+#[test]
+fn layers_and_masks_filter_pairs_both_ways() {
+    // Three overlapping cubes: 0 on layer 1, 1 on layer 2 ignoring layer 1,
+    // 2 on layer 4 colliding with everything.
+    let mut world = World::new();
+    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
+    let at = |x: f32| Pose::new(Vec3::X * x, Quat::IDENTITY);
+    let a = world.add_body(BodyDesc::new(cube.clone(), at(0.0)).with_filter(1, u32::MAX)).unwrap();
+    let b = world.add_body(BodyDesc::new(cube.clone(), at(0.3)).with_filter(2, !1)).unwrap();
+    let c = world.add_body(BodyDesc::new(cube, at(0.6)).with_filter(4, u32::MAX)).unwrap();
+    world.update();
+    let pairs: BTreeSet<(BodyId, BodyId)> = world.events().iter().map(|e| (e.a, e.b)).collect();
+    // a-b: b's mask excludes a's layer; a-c and b-c collide.
+    assert_eq!(pairs, BTreeSet::from([(a, c), (b, c)]));
+    assert_eq!(world.stats().tree_candidates, 2, "filtered before the stages");
+}

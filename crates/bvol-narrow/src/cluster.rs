@@ -67,6 +67,15 @@ pub(crate) struct Cluster {
     pub members: Range<u32>,
 }
 
+impl Cluster {
+    /// Whether it has more than one member: the bounds of a lone member are
+    /// as tight as its cluster's (its own direction, not a cap about it), so
+    /// a query tests only those (every face and edge of a box is alone).
+    pub fn is_group(&self) -> bool {
+        self.members.len() > 1
+    }
+}
+
 /// An order of items (faces by their normals, edges by their arcs' caps) in
 /// which those of one of the 26 grid directions of [`seed_slot`] come
 /// together, stably, and the clusters of that order, given each item's cap

@@ -26,12 +26,15 @@ impl Plane {
 }
 
 /// An edge's arc on the Gauss map (the great-circle arc between its two
-/// faces' normals), for the bounds that let the edge query skip it: the cap
-/// it lies in (about its midpoint, of its half angle), the unit pole of its
-/// great circle, and how deep the shape's inner centre is behind the edge
-/// along any direction of the arc.
+/// faces' normals), for the bounds that let the edge query skip it: its two
+/// ends, the cap it lies in (about its midpoint, of its half angle), the unit
+/// pole of its great circle, and how deep the shape's inner centre is behind
+/// the edge along any direction of the arc.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Arc {
+    /// The two face normals it joins, from the face of the edge's half-edge
+    /// to its twin's: kept here so that the edge query reads them in one place.
+    pub ends: (DVec3, DVec3),
     /// The cap about the arc's midpoint whose radius is its half angle.
     pub cap: Cap,
     /// Unit normal of the arc's plane (zero if the two normals coincide).
@@ -49,24 +52,24 @@ impl Arc {
         let (n1, n2) = (p1.normal, p2.normal);
         let mid = (n1 + n2).normalize_or_zero();
         Arc {
+            ends: (n1, n2),
             cap: Cap { axis: mid, cos: mid.dot(n1), sin: mid.cross(n1).length() },
             pole: n1.cross(n2).normalize_or_zero(),
             inner: (-p1.distance(centre)).min(-p2.distance(centre)),
         }
     }
 
-    /// The greatest `d . w` over the directions `d` of the arc from `n1` to
-    /// `n2`, exactly: `w`'s part in the arc's plane if its direction falls
-    /// within the arc (its angle from the midpoint at most the half angle),
-    /// else at the nearer end.
-    pub fn max(&self, n1: DVec3, n2: DVec3, w: DVec3) -> f64 {
+    /// The greatest `d . w` over the directions `d` of the arc, exactly: `w`'s
+    /// part in the arc's plane if its direction falls within the arc (its
+    /// angle from the midpoint at most the half angle), else at the nearer end.
+    pub fn max(&self, w: DVec3) -> f64 {
         let along = self.cap.axis.dot(w);
         let across = self.pole.dot(w);
         let in_plane2 = (w.length_squared() - across * across).max(0.0);
         if along > 0.0 && along * along >= self.cap.cos * self.cap.cos * in_plane2 {
             in_plane2.sqrt()
         } else {
-            n1.dot(w).max(n2.dot(w))
+            self.ends.0.dot(w).max(self.ends.1.dot(w))
         }
     }
 }
@@ -108,8 +111,11 @@ pub(crate) trait Convex {
     fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
 
     /// The vertex least far along `dir`, and `dir . vertex` (its support
-    /// point against `dir`), searched from vertex `start`.
-    fn support_min(&self, dir: DVec3, start: u32) -> (u32, f64);
+    /// point against `dir`), searched from vertex `start`. The search may
+    /// stop at the first vertex it meets at or below `limit`, when the caller
+    /// only needs to know the least is that low: a value `<= limit` is then
+    /// only an upper bound of the least. `-inf` asks for the least.
+    fn support_min(&self, dir: DVec3, start: u32, limit: f64) -> (u32, f64);
 }
 
 /// [`Convex::support_min`] by hill climbing on the vertex graph, to the
@@ -117,13 +123,17 @@ pub(crate) trait Convex {
 /// (the previous face's or frame's answer, often a step away) and the
 /// [`seed`](Convex::seed) for `dir` (never far). On a convex polyhedron a
 /// vertex no neighbour improves on is a global minimum (up to the hull's
-/// coplanarity tolerance).
-fn hill_climb<S: Convex + ?Sized>(shape: &S, dir: DVec3, start: u32) -> (u32, f64) {
+/// coplanarity tolerance). Stops early at or below `limit`: a query that
+/// only needs to know whether the least beats a bar climbs no further.
+fn hill_climb<S: Convex + ?Sized>(shape: &S, dir: DVec3, start: u32, limit: f64) -> (u32, f64) {
     let topology = shape.topology();
     let seed = shape.seed(dir);
     let (at_start, at_seed) = (dir.dot(shape.vertex(start)), dir.dot(shape.vertex(seed)));
     let (mut v, mut low) = if at_seed < at_start { (seed, at_seed) } else { (start, at_start) };
     loop {
+        if low <= limit {
+            return (v, low);
+        }
         let mut next = v;
         for &w in topology.neighbours(v) {
             let d = dir.dot(shape.vertex(w));
@@ -173,7 +183,7 @@ impl Convex for Polyhedron {
     }
 
     fn vertex(&self, v: u32) -> DVec3 {
-        self.vertices[v as usize].as_dvec3()
+        self.points[v as usize]
     }
 
     fn plane(&self, f: u32) -> Plane {
@@ -196,11 +206,11 @@ impl Convex for Polyhedron {
         self.face_seeds[seed_slot(dir)]
     }
 
-    fn support_min(&self, dir: DVec3, start: u32) -> (u32, f64) {
-        if self.vertices.len() > SCAN_ALL {
-            return hill_climb(self, dir, start);
+    fn support_min(&self, dir: DVec3, start: u32, limit: f64) -> (u32, f64) {
+        if self.points.len() > SCAN_ALL {
+            return hill_climb(self, dir, start, limit);
         }
-        let along = (0u32..).zip(&self.vertices).map(|(i, v)| (i, dir.dot(v.as_dvec3())));
+        let along = (0u32..).zip(&self.points).map(|(i, &v)| (i, dir.dot(v)));
         along.fold((0, f64::INFINITY), |m, x| if x.1 < m.1 { x } else { m })
     }
 
@@ -295,7 +305,7 @@ impl Convex for Cuboid {
 
     /// The corner against `dir` on every axis, at once: the unit cube's seed
     /// for the diagonal of `dir`'s signs.
-    fn support_min(&self, dir: DVec3, _start: u32) -> (u32, f64) {
+    fn support_min(&self, dir: DVec3, _start: u32, _limit: f64) -> (u32, f64) {
         let level = |x: f64| if x < 0.0 { 0 } else { 2 };
         let v = self.unit.seeds[level(dir.x) + 3 * level(dir.y) + 9 * level(dir.z)];
         (v, dir.dot(self.vertex(v)))

@@ -36,7 +36,7 @@ const PREFER_ABS: f64 = 2e-5;
 /// Apart: [`Collision::Separated`] with that axis and the gap along it (a
 /// lower bound of their distance). Touching: the axis of least penetration,
 /// preferring faces over edges and A's faces over B's within a small
-/// tolerance (5% and 2% of the depth, plus 1e-5 of the shapes' size), so
+/// tolerance (2e-5 of the shapes' size), so
 /// resting contacts do not flicker; a face contact clips the incident face of
 /// the other shape against the reference face (up to 4 points), an edge
 /// contact has one point between the edges.

@@ -57,6 +57,24 @@ impl Polygon {
     fn points(&self) -> &[DVec3] {
         if self.heap.is_empty() { &self.inline[..self.len] } else { &self.heap }
     }
+
+    /// Keeps only the corners that pass `keep`, in order.
+    fn retain(&mut self, keep: impl Fn(DVec3) -> bool) {
+        if self.heap.is_empty() {
+            let mut kept = 0;
+            for i in 0..self.len {
+                let p = self.inline[i];
+                if keep(p) {
+                    self.inline[kept] = p;
+                    kept += 1;
+                }
+            }
+            self.len = kept;
+        } else {
+            self.heap.retain(|&p| keep(p));
+            self.len = self.heap.len();
+        }
+    }
 }
 
 /// A contact manifold in the reference shape's space: up to four points,
@@ -105,20 +123,17 @@ pub(crate) fn face_contact<R: Convex, I: Convex>(
         polygon.push(rel.apply(incident.vertex(ti.half_edge(h).origin)));
     }
     let mut scratch = Polygon::new();
+    // Swapping the references, not the polygons: each is hundreds of bytes.
+    let (mut clipped, mut out) = (&mut polygon, &mut scratch);
     let tr = reference.topology();
     for h in tr.face_loop(face) {
         let p = reference.vertex(tr.half_edge(h).origin);
         let side = (reference.vertex(tr.head(h)) - p).cross(plane.normal);
-        clip(&polygon, Plane { normal: side, offset: side.dot(p) }, &mut scratch);
-        std::mem::swap(&mut polygon, &mut scratch);
+        clip(clipped, Plane { normal: side, offset: side.dot(p) }, out);
+        std::mem::swap(&mut clipped, &mut out);
     }
-    let mut below = Polygon::new();
-    for &p in polygon.points() {
-        if plane.distance(p) <= slop {
-            below.push(p);
-        }
-    }
-    reduce(below.points(), &plane)
+    clipped.retain(|p| plane.distance(p) <= slop);
+    reduce(clipped.points(), &plane)
 }
 
 /// The one-point manifold at vertex `support` of `incident` (mapped by `rel`)

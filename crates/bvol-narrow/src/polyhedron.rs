@@ -10,7 +10,7 @@ use crate::topology::Topology;
 
 /// A convex polyhedron in its local space, with what the separating-axis test
 /// reads laid out for it, computed once per shape: the vertices contiguous
-/// (f32, read as exact f64), the face planes as `(unit normal, offset)` pairs
+/// (f32 as given, and in f64, exactly, as the tests read them), the face planes as `(unit normal, offset)` pairs
 /// in f64 (from the exact hull), and a half-edge structure (origin, twin, next,
 /// face) that gives the neighbours of a vertex for hill-climbing support
 /// points, the loops of faces for clipping, and each undirected edge once with
@@ -27,6 +27,9 @@ use crate::topology::Topology;
 #[derive(Clone, Debug)]
 pub struct Polyhedron {
     pub(crate) vertices: Vec<Vec3>,
+    /// The vertices in f64, as the queries read them: converted once here,
+    /// not at every read.
+    pub(crate) points: Vec<DVec3>,
     pub(crate) planes: Vec<Plane>,
     pub(crate) topology: Topology,
     pub(crate) size: f64,
@@ -145,6 +148,7 @@ impl Polyhedron {
         });
         Polyhedron {
             vertices,
+            points,
             planes,
             topology,
             size,

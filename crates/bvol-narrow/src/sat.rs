@@ -21,6 +21,24 @@ use crate::frame::Frame;
 /// the separation is off by at most about 1e-8 of the shapes' size.
 const PARALLEL_SINE: f64 = 1e-8;
 
+/// The common normal of an edge pair that the walk finds must lie on A's arc
+/// (in its cap, whose cosine may fall short by this much to rounding), else
+/// the pair is skipped. For edges close to parallel (yet above
+/// [`PARALLEL_SINE`]) the arcs run along each other, rounding decides where
+/// they cross, and the normal, set by the small angle between the edges, can
+/// lie far off A's arc: the separation along it then says nothing (a teapot's
+/// hull was called apart from a box it sank into); the sliver between such
+/// arcs is the face queries'.
+const ARC_SLACK: f64 = 1e-9;
+
+/// An edge pair found by the walk is taken only if its edges are their
+/// shapes' support points along its normal: if the gap measured from the
+/// true support points falls short of the edges' own separation by more than
+/// this (relative to the shapes' size), the walk crossed there by rounding
+/// (edges near parallel, faces near coplanar) and the pair is skipped; its
+/// sliver is the face queries'.
+const SUPPORT_SLACK: f64 = 1e-6;
+
 /// A face of the reference shape and how far the other shape is above it.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct FaceQuery {
@@ -40,7 +58,8 @@ pub(crate) struct EdgeQuery {
     pub edge_a: u32,
     /// The half-edge of B.
     pub half_edge_b: u32,
-    /// Signed distance of B's edge beyond A's along `axis`.
+    /// The gap between the shapes along `axis`, from their support points:
+    /// the signed distance of B's edge beyond A's.
     pub separation: f64,
     /// Unit axis in A's space, pointing out of A (from A to B).
     pub axis: DVec3,
@@ -48,18 +67,25 @@ pub(crate) struct EdgeQuery {
 
 /// The separation of `other` above face `f` of `reference`, `rel` mapping
 /// `other`'s space into `reference`'s: the least `n . x - offset` over the other
-/// shape's vertices `x`, found by hill climbing from vertex `start`.
+/// shape's vertices `x`, found by hill climbing from vertex `start`. The
+/// search stops once the separation is known to be at most `bar` (`-inf` for
+/// none), and then reports at most `bar`, not the least.
 pub(crate) fn face_separation<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
     rel: &Frame,
     f: u32,
     start: u32,
+    bar: f64,
 ) -> FaceQuery {
     let plane = reference.plane(f);
     // n . (R x + t) = (R^T n) . x + n . t: one direction mapped, not the vertices.
-    let (support, low) = other.support_min(rel.unrotate(plane.normal), start);
-    let separation = low + plane.normal.dot(rel.translation) - plane.offset;
+    let shift = plane.normal.dot(rel.translation) - plane.offset;
+    let limit = bar - shift;
+    let (support, low) = other.support_min(rel.unrotate(plane.normal), start, limit);
+    let separation = low + shift;
+    // Stopped early, the rounding of `limit` must not let the bound pass the bar.
+    let separation = if low <= limit { separation.min(bar) } else { separation };
     FaceQuery { face: f, separation, support }
 }
 
@@ -77,7 +103,9 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 /// plane's distance to `p` is `n . (p - c_R)` less the depth of the
 /// reference's inner centre `c_R` behind it). Only faces whose bounds beat
 /// the best so far (and the floor) are searched, each from the previous
-/// one's support point.
+/// one's support point, and a search stops at the first vertex of the other
+/// shape low enough to show that its face cannot beat them (most stop at
+/// their first vertex).
 pub(crate) fn face_query<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
@@ -92,13 +120,15 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
     let (ball, witnessed) = (centre - inner, witness - inner);
     let (ball_length, witnessed_length) = (ball.length(), witnessed.length());
     let dir = rel.unrotate(reference.plane(first).normal);
-    let mut best = face_separation(reference, other, rel, first, other.seed(dir));
+    let mut best =
+        face_separation(reference, other, rel, first, other.seed(dir), f64::NEG_INFINITY);
     let mut start = best.support;
     for cluster in reference.face_clusters() {
         let bar = best.separation.max(floor);
-        if best.separation > 0.0
-            || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar
-            || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
+        if cluster.is_group()
+            && (best.separation > 0.0
+                || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar
+                || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar)
         {
             continue;
         }
@@ -112,9 +142,10 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
             {
                 continue;
             }
-            let q = face_separation(reference, other, rel, f, start);
+            // Only a face beating the bar is searched to the end.
+            let q = face_separation(reference, other, rel, f, start, bar);
             start = q.support;
-            if q.separation > best.separation {
+            if q.separation > bar {
                 best = q;
             }
         }
@@ -149,7 +180,10 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
 /// go first: A's inner centre `c_A` is at least [`Arc::inner`] behind the edge
 /// along the arc, and the arc lies in its cap, so `cap max of (c_B - c_A) -
 /// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too; and
-/// the same with a cluster's cap and depth bound a whole cluster of arcs.
+/// the same with a cluster's cap and depth bound a whole cluster of arcs (a
+/// lone arc's own bounds are tighter, so its cluster's are not tested). Last,
+/// before any step is walked, B's support point against `n1`, where the walk
+/// starts, is a witness exact at one end of the arc.
 ///
 /// [`Arc::max`]: crate::convex::Arc::max
 /// [`Arc::inner`]: crate::convex::Arc::inner
@@ -168,13 +202,14 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     let (ball_length, witnessed_length) = (ball.length(), witnessed.length());
     let mut best: Option<EdgeQuery> = None;
     let mut start: Option<u32> = None; // B's support point against the last arc's start
+    let slack = SUPPORT_SLACK * a.size().max(b.size());
     let beaten = |cap: &Cap, inner: f64, bar: f64| {
         cap.max(ball, ball_length) - inner - radius_b <= bar
             || cap.max(witnessed, witnessed_length) - inner <= bar
     };
     for cluster in a.edge_clusters() {
         let bar = best.map_or(floor, |q| q.separation.max(floor));
-        if beaten(&cluster.cap, cluster.inner, bar) {
+        if cluster.is_group() && beaten(&cluster.cap, cluster.inner, bar) {
             continue;
         }
         for e in cluster.members {
@@ -184,28 +219,41 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
                 continue;
             }
             let h = ta.edges[e as usize];
-            let edge = ta.half_edge(h);
-            let (n1, n2) = (a.plane(edge.face).normal, a.plane(ta.twin_face(h)).normal);
-            let tail = a.vertex(edge.origin);
-            if arc.max(n1, n2, centre_b - tail) - radius_b <= bar
-                || arc.max(n1, n2, witness - tail) <= bar
-            {
+            let tail = a.vertex(ta.half_edge(h).origin);
+            if arc.max(centre_b - tail) - radius_b <= bar || arc.max(witness - tail) <= bar {
                 continue;
             }
             // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
             // starts at B's support point against n1, climbed from the last.
+            let (n1, n2) = arc.ends;
             let (d1, d2) = (rel.unrotate(n1), rel.unrotate(n2));
-            let v0 = b.support_min(d1, start.unwrap_or_else(|| b.seed(d1))).0;
+            let v0 = b.support_min(d1, start.unwrap_or_else(|| b.seed(d1)), f64::NEG_INFINITY).0;
             start = Some(v0);
+            // That support point is a point of B, exact at the arc's start: a
+            // tighter witness than the centre line's, before any step is walked.
+            if arc.max(rel.apply(b.vertex(v0)) - tail) <= bar {
+                continue;
+            }
             let dir_a = a.vertex(ta.head(h)) - tail;
             let (mut v, mut t) = (v0, 0.0);
             for _ in 0..tb.vertex_count() {
                 let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
-                let (pb, qb) = (b.vertex(v), b.vertex(w));
-                let found =
-                    edge_separation(tail, dir_a, rel.apply(pb), rel.rotate(qb - pb), n1 + n2);
+                let (pb, eb) = (rel.apply(b.vertex(v)), rel.rotate(b.vertex(w) - b.vertex(v)));
+                let beats = |s: f64| best.is_none_or(|q| s > q.separation);
+                let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
+                    .filter(|&(s, axis)| {
+                        axis.dot(arc.cap.axis) >= arc.cap.cos - ARC_SLACK && beats(s)
+                    })
+                    // A new best is measured again from both shapes' true
+                    // support points: the edges are those only if the
+                    // walk was exact, which rounding can spoil for edges
+                    // near parallel or faces near coplanar.
+                    .and_then(|(s, axis)| {
+                        let gap = axis_gap(a, b, rel, axis, ta.half_edge(h).origin, v).gap;
+                        (gap >= s - slack).then_some((gap, axis))
+                    });
                 if let Some((separation, axis)) = found
-                    && best.is_none_or(|q| separation > q.separation)
+                    && beats(separation)
                 {
                     best = Some(EdgeQuery { edge_a: e, half_edge_b: hb, separation, axis });
                     if separation > 0.0 {
@@ -270,8 +318,8 @@ pub(crate) fn axis_gap<A: Convex, B: Convex>(
     start_a: u32,
     start_b: u32,
 ) -> AxisGap {
-    let (va, low_a) = a.support_min(-axis, start_a);
-    let (vb, low_b) = b.support_min(rel.unrotate(axis), start_b);
+    let (va, low_a) = a.support_min(-axis, start_a, f64::NEG_INFINITY);
+    let (vb, low_b) = b.support_min(rel.unrotate(axis), start_b, f64::NEG_INFINITY);
     let gap = low_b + axis.dot(rel.translation) + low_a;
     AxisGap { axis, gap, high_a: a.vertex(va), low_b: rel.apply(b.vertex(vb)), supports: (va, vb) }
 }

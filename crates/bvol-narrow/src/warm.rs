@@ -83,17 +83,19 @@ pub(crate) fn retest<A: Convex, B: Convex>(
 ) -> Option<(DVec3, f64)> {
     let (na, nb) = (a.topology().vertex_count() as u32, b.topology().vertex_count() as u32);
     let (fa, fb) = (a.topology().face_count() as u32, b.topology().face_count() as u32);
+    // Only a gap above the margin answers: the searches may stop below it.
+    let margin = MARGIN * a.size().max(b.size());
     let (axis, gap) = match feature {
         Feature::None => return None,
         Feature::Centres { support_a, support_b } if support_a < na && support_b < nb => {
             centre_axis(a, b, rel, Some((support_a, support_b))).map(|g| (g.axis, g.gap))?
         }
         Feature::FaceA { face, support } if face < fa && support < nb => {
-            let q = face_separation(a, b, rel, face, support);
+            let q = face_separation(a, b, rel, face, support, margin);
             (a.plane(face).normal, q.separation)
         }
         Feature::FaceB { face, support } if face < fb && support < na => {
-            let q = face_separation(b, a, &frame_b.relative(frame_a), face, support);
+            let q = face_separation(b, a, &frame_b.relative(frame_a), face, support, margin);
             (-rel.rotate(b.plane(face).normal), q.separation)
         }
         Feature::Edges { edge_a, half_edge_b }
@@ -104,7 +106,7 @@ pub(crate) fn retest<A: Convex, B: Convex>(
         }
         _ => return None,
     };
-    (gap > MARGIN * a.size().max(b.size())).then_some((axis, gap))
+    (gap > margin).then_some((axis, gap))
 }
 
 /// The gap between `a` and `b` along the common normal of A's edge `edge_a`
