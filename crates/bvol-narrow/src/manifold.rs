@@ -137,7 +137,12 @@ pub(crate) fn face_contact<R: Convex, I: Convex>(
 }
 
 /// The one-point manifold at vertex `support` of `incident` (mapped by `rel`)
-/// below face `face` of `reference`: midway between it and the plane.
+/// below face `face` of `reference`: midway between it and the plane, when
+/// the vertex lies over the face. When it lies beside the face, the shapes
+/// meet where an edge of the incident shape crosses the face's rim (nearly
+/// parallel edges do this, and their pair can be too parallel for the edge
+/// query): the point is then midway between the closest points of the
+/// vertex's edges and the rim's (Ericson 5.1.9), the nearest such pair.
 pub(crate) fn vertex_contact<R: Convex, I: Convex>(
     reference: &R,
     face: u32,
@@ -145,7 +150,33 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
     rel: &Frame,
     support: u32,
 ) -> Manifold {
-    reduce(&[rel.apply(incident.vertex(support))], &reference.plane(face))
+    let plane = reference.plane(face);
+    let s = rel.apply(incident.vertex(support));
+    let tr = reference.topology();
+    let rim: Vec<(DVec3, DVec3)> = tr
+        .face_loop(face)
+        .map(|h| {
+            let p = reference.vertex(tr.half_edge(h).origin);
+            (p, reference.vertex(tr.head(h)) - p)
+        })
+        .collect();
+    let over = rim.iter().all(|&(p, e)| e.cross(plane.normal).dot(s - p) <= 0.0);
+    if over {
+        return reduce(&[s], &plane);
+    }
+    let ti = incident.topology();
+    let mut best = (f64::INFINITY, s);
+    for &w in ti.neighbours(support) {
+        let edge = rel.apply(incident.vertex(w)) - s;
+        for &(p, e) in &rim {
+            let (ca, cb) = closest_points(p, e, s, edge);
+            let d = (ca - cb).length_squared();
+            if d < best.0 {
+                best = (d, (ca + cb) * 0.5);
+            }
+        }
+    }
+    reduce(&[best.1], &plane)
 }
 
 /// The face round vertex `v` of `shape` whose normal, mapped by `rel`, is most

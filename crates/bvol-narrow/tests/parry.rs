@@ -340,9 +340,7 @@ fn check_manifold(t: &mut Tally, case: &Case, got: &Collision, grown: impl Fn(Bo
         );
     }
     t.note("manifold: contacts checked");
-    if !problems.is_empty() && is_known_edge_point_bug(case) {
-        t.note("KNOWN BUG, counted apart: the one case of nearly_parallel_edges_contact_points_lie_on_both");
-    } else if !problems.is_empty() {
+    if !problems.is_empty() {
         t.fail(tags, format!("{} depth {depth:e}: {problems}", case.describe()));
     }
 }
@@ -1120,24 +1118,13 @@ fn teapot_overlapping_a_box_is_not_apart() {
     assert!((contact.depth as f64 - exact.depth()).abs() < 1e-4 * teapot.size, "{contact:?}");
 }
 
-/// Whether `case` is the one pair of the generated families on which the
-/// known bug of [`nearly_parallel_edges_contact_points_lie_on_both`] shows
-/// (found in 128 000 face-on-face and parallel-edge pairs; depth and normal
-/// are right there, only the contact point is off): it is counted apart so
-/// that every other pair still fails the test on any problem. Remove this
-/// with the fix.
-fn is_known_edge_point_bug(case: &Case) -> bool {
-    let d = case.describe();
-    d.starts_with("teapot@1 vs random50@1")
-        && d.contains("Vec3(0.054220848, 0.074214526, 0.3693062)")
-}
-
 /// The teapot's hull (radius 1) and a random 50-point hull with nearly
 /// parallel edges facing, 6e-6 deep: every contact point must lie on both.
-/// KNOWN BUG, open: the edge pair chosen gives the right depth and normal,
-/// but its contact point lies 3.5e-2 outside A (see the issue's note).
+/// (The least penetration there is a face of A whose clipped incident face
+/// stays above it, B's lowest vertex lying beside the face: the contact is
+/// where B's edges cross the face's rim; it once lay at that vertex, 3.5e-2
+/// outside A.)
 #[test]
-#[ignore = "known bug: edge contact point off body A on nearly parallel edges (issue 4 left open)"]
 fn nearly_parallel_edges_contact_points_lie_on_both() {
     let teapot = shapes::mesh_hull("teapot", 1.0);
     let other = shapes::random_hulls(1.0).swap_remove(5);
