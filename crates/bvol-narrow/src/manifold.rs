@@ -125,10 +125,8 @@ pub(crate) fn face_contact<R: Convex, I: Convex>(
     let mut scratch = Polygon::new();
     // Swapping the references, not the polygons: each is hundreds of bytes.
     let (mut clipped, mut out) = (&mut polygon, &mut scratch);
-    let tr = reference.topology();
-    for h in tr.face_loop(face) {
-        let p = reference.vertex(tr.half_edge(h).origin);
-        let side = (reference.vertex(tr.head(h)) - p).cross(plane.normal);
+    for (p, edge) in rim(reference, face) {
+        let side = edge.cross(plane.normal);
         clip(clipped, Plane { normal: side, offset: side.dot(p) }, out);
         std::mem::swap(&mut clipped, &mut out);
     }
@@ -152,14 +150,7 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
 ) -> Manifold {
     let plane = reference.plane(face);
     let s = rel.apply(incident.vertex(support));
-    let tr = reference.topology();
-    let rim: Vec<(DVec3, DVec3)> = tr
-        .face_loop(face)
-        .map(|h| {
-            let p = reference.vertex(tr.half_edge(h).origin);
-            (p, reference.vertex(tr.head(h)) - p)
-        })
-        .collect();
+    let rim: Vec<(DVec3, DVec3)> = rim(reference, face).collect();
     let over = rim.iter().all(|&(p, e)| e.cross(plane.normal).dot(s - p) <= 0.0);
     if over {
         return reduce(&[s], &plane);
@@ -177,6 +168,16 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
         }
     }
     reduce(&[best.1], &plane)
+}
+
+/// The edges round face `face` of `shape`, in loop order: each as its start
+/// and its vector to the next corner.
+fn rim<S: Convex>(shape: &S, face: u32) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
+    let topology = shape.topology();
+    topology.face_loop(face).map(move |h| {
+        let p = shape.vertex(topology.half_edge(h).origin);
+        (p, shape.vertex(topology.head(h)) - p)
+    })
 }
 
 /// The face round vertex `v` of `shape` whose normal, mapped by `rel`, is most

@@ -16,11 +16,15 @@
 //! depth (parry: 0), pairs at 1e-3 scale get their contact (parry: none), and
 //! the verdict is exact near touching where parry has a band of about 1e-4.
 
+mod common;
+
 use bvol_narrow::{
     Body, Collision, Contact, NarrowError, Polyhedron, Pose, ShapeError, WarmStart, hull_hull,
     obb_obb, sphere_hull, sphere_obb, sphere_sphere,
 };
 use bvol_volumes::{ConvexHull, Obb, Sphere};
+use common::random_rotation;
+use common::reference::closest_on_triangle;
 use glam::{DMat3, DVec3, Mat3, Quat, Vec3};
 use rand::rngs::Xoshiro256PlusPlus;
 use rand::{RngExt, SeedableRng};
@@ -228,20 +232,6 @@ fn cloud(rng: &mut Xoshiro256PlusPlus, n: usize, r: f32) -> Vec<Vec3> {
         }
     }
     points
-}
-
-/// A uniformly random rotation (Shoemake, Graphics Gems III).
-fn random_rotation(rng: &mut Xoshiro256PlusPlus) -> Quat {
-    let (u1, u2, u3): (f32, f32, f32) = (rng.random(), rng.random(), rng.random());
-    let tau = std::f32::consts::TAU;
-    let (a, b) = ((1.0 - u1).sqrt(), u1.sqrt());
-    Quat::from_xyzw(
-        a * (tau * u2).sin(),
-        a * (tau * u2).cos(),
-        b * (tau * u3).sin(),
-        b * (tau * u3).cos(),
-    )
-    .normalize()
 }
 
 /// A random vector in the cube `[-r, r]^3`.
@@ -1062,39 +1052,6 @@ fn sphere_against_box_matches_the_exact_closest_point() {
         }
     }
     assert!(touching > 1000, "{touching}");
-}
-
-/// Closest point of triangle `abc` to `p` (Ericson 5.1.5).
-fn closest_on_triangle(p: DVec3, a: DVec3, b: DVec3, c: DVec3) -> DVec3 {
-    let (ab, ac, ap) = (b - a, c - a, p - a);
-    let (d1, d2) = (ab.dot(ap), ac.dot(ap));
-    if d1 <= 0.0 && d2 <= 0.0 {
-        return a;
-    }
-    let bp = p - b;
-    let (d3, d4) = (ab.dot(bp), ac.dot(bp));
-    if d3 >= 0.0 && d4 <= d3 {
-        return b;
-    }
-    let vc = d1 * d4 - d3 * d2;
-    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
-        return a + ab * (d1 / (d1 - d3));
-    }
-    let cp = p - c;
-    let (d5, d6) = (ab.dot(cp), ac.dot(cp));
-    if d6 >= 0.0 && d5 <= d6 {
-        return c;
-    }
-    let vb = d5 * d2 - d1 * d6;
-    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
-        return a + ac * (d2 / (d2 - d6));
-    }
-    let va = d3 * d6 - d5 * d4;
-    if va <= 0.0 && (d4 - d3) >= 0.0 && (d5 - d6) >= 0.0 {
-        return b + (c - b) * ((d4 - d3) / ((d4 - d3) + (d5 - d6)));
-    }
-    let denom = 1.0 / (va + vb + vc);
-    a + ab * (vb * denom) + ac * (vc * denom)
 }
 
 /// sphere_hull on random hulls against the closest point over all the hull's
