@@ -179,10 +179,7 @@ impl Shape {
         if !(radius.is_finite() && radius > 0.0) {
             return Err(ShapeError::BadSize { primitive: "ball" });
         }
-        let sphere = Sphere::new(Vec3::ZERO, radius);
-        let h = Vec3::splat(radius);
-        let obb = Obb { center: Vec3::ZERO, axes: glam::Mat3::IDENTITY, half_extents: h };
-        Ok(Shape { parts: vec![Part::Ball(sphere)], sphere, obb })
+        Self::from_parts(vec![Part::Ball(Sphere::new(Vec3::ZERO, radius))], FitOptions::default())
     }
 
     /// A capsule along y (a segment of half length `half_height` swept by a
@@ -242,9 +239,13 @@ impl Shape {
     }
 
     /// The bounds of the parts' points, by the chosen methods.
+    /// A lone ball's sphere is the ball itself, whatever the method.
     fn from_parts(parts: Vec<Part>, fit: FitOptions) -> Result<Shape, ShapeError> {
         let points: Vec<Vec3> = parts.iter().flat_map(part_points).collect();
-        let sphere = Sphere::fit(&points, fit.sphere)?;
+        let sphere = match parts.as_slice() {
+            [Part::Ball(ball)] => *ball,
+            _ => Sphere::fit(&points, fit.sphere)?,
+        };
         let obb = Obb::fit(&points, fit.obb)?;
         Ok(Shape { parts, sphere, obb })
     }
@@ -258,19 +259,18 @@ fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
     Ok(Part::Hull(Box::new(HullPart { polyhedron, hull })))
 }
 
-/// The points a part's bounds must hold: a hull's vertices, or a ball's
-/// six extreme points and the corners of its cube (the sphere fit of a
-/// ball alone is exact; the OBB is the cube).
+/// Points whose bounds hold the part: a hull's vertices, or the corners of a
+/// ball's cube (points on the ball itself would not do: their hull lies
+/// inside the ball, and so might a box fitted to them).
 fn part_points(part: &Part) -> Vec<Vec3> {
     match part {
         Part::Hull(part) => part.polyhedron.vertices().to_vec(),
-        Part::Ball(s) => {
-            let r = s.radius;
-            let mut points: Vec<Vec3> =
-                [Vec3::X, Vec3::Y, Vec3::Z].iter().flat_map(|&a| [a * r, -a * r]).collect();
-            points.extend(fibonacci_sphere(CAP_POINTS).map(|p| p * r));
-            points.into_iter().map(|p| s.center + p).collect()
-        }
+        Part::Ball(s) => (0..8)
+            .map(|i| {
+                let corner = Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32);
+                s.center + (corner * 2.0 - 1.0) * s.radius
+            })
+            .collect(),
     }
 }
 

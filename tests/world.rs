@@ -429,3 +429,25 @@ fn layers_and_masks_filter_pairs_both_ways() {
     assert_eq!(pairs, BTreeSet::from([(a, c), (b, c)]));
     assert_eq!(world.stats().tree_candidates, 2, "filtered before the stages");
 }
+
+#[test]
+fn ball_bounds_hold_the_ball_by_every_method() {
+    let ball = Shape::ball(0.75).unwrap();
+    let (mut rng, r) = (SmallRng::seed_from_u64(8), 0.75f32);
+    let methods = [
+        FitOptions::default(),
+        FitOptions {
+            sphere: bvol::volumes::SphereMethod::Ritter,
+            obb: bvol::volumes::ObbMethod::PcaPoints,
+        },
+    ];
+    for fit in methods {
+        let shape = ball.refit(fit).unwrap();
+        assert_eq!(shape.sphere().radius, r, "a lone ball's sphere is the ball");
+        for _ in 0..2000 {
+            let d = Vec3::new(rng.random(), rng.random(), rng.random()) * 2.0 - 1.0;
+            let p = d.normalize_or_zero() * r;
+            assert!(shape.obb().contains_point(p), "{fit:?}: {p} outside {:?}", shape.obb());
+        }
+    }
+}

@@ -80,15 +80,8 @@ fn scaled(shape: &Shape) -> Result<Shape, String> {
     Shape::from_meshes(&meshes, FitOptions::default()).map_err(|e| e.to_string())
 }
 
-/// Per-stage times summed over the timed frames, and pair counts.
-#[derive(Default)]
-struct Totals {
-    frames: usize,
-    stats: Vec<FrameStats>,
-}
-
 /// Runs the world, then the tree alone on the same leaf boxes.
-fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<(Totals, f64), String> {
+fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<(Vec<FrameStats>, f64), String> {
     let mut scene = Scene::new(SceneKind::Uniform, args.n, args.seed);
     let mut world = World::new();
     let mut ids: Vec<BodyId> = Vec::with_capacity(args.n);
@@ -97,7 +90,7 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<(Totals, f64), String>
     let mut rotations: Vec<Quat> =
         (0..args.n).map(|i| Quat::from_axis_angle(axis(!(i as u32)), i as f32)).collect();
     let mut poses: Vec<Pose> = Vec::with_capacity(args.n);
-    let mut totals = Totals::default();
+    let mut totals = Vec::with_capacity(args.frames);
     let mut leaves: Vec<Vec<Aabb>> = Vec::new();
     for f in 0..=args.frames {
         let boxes = scene.step();
@@ -117,8 +110,7 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<(Totals, f64), String>
         }
         let stats = *world.update();
         if f > 0 {
-            totals.stats.push(stats);
-            totals.frames += 1;
+            totals.push(stats);
             leaves.push(ids.iter().map(|&id| leaf(&world, id)).collect());
         }
     }
@@ -151,12 +143,13 @@ fn axis(i: u32) -> Vec3 {
     Vec3::new(h(1), h(2), h(3)).try_normalize().unwrap_or(Vec3::Y)
 }
 
-fn print(totals: &Totals, tree_ms: f64, args: &WorldArgs) {
-    let k = totals.frames.max(1) as f64;
+/// One row per stage: pairs and milliseconds per timed frame.
+fn print(totals: &[FrameStats], tree_ms: f64, args: &WorldArgs) {
+    let k = totals.len().max(1) as f64;
     let ms = |f: fn(&FrameStats) -> Duration| {
-        totals.stats.iter().map(|s| f(s).as_secs_f64()).sum::<f64>() * 1e3 / k
+        totals.iter().map(|s| f(s).as_secs_f64()).sum::<f64>() * 1e3 / k
     };
-    let count = |f: fn(&FrameStats) -> usize| totals.stats.iter().map(f).sum::<usize>() as f64 / k;
+    let count = |f: fn(&FrameStats) -> usize| totals.iter().map(f).sum::<usize>() as f64 / k;
     let bounds = ms(|s| s.bounds_time);
     let refit = count(|s| s.refit);
     println!("stage\tpairs_per_frame\tms_per_frame");
@@ -171,7 +164,7 @@ fn print(totals: &Totals, tree_ms: f64, args: &WorldArgs) {
     println!(
         "# n {}, {} frames, {} threads; whole frame / tree alone = {:.2}; bounds refit {:.1} M bodies/s",
         args.n,
-        totals.frames,
+        totals.len(),
         args.threads,
         total / tree_ms,
         refit / bounds / 1e3
