@@ -115,3 +115,40 @@ impl<B: Bound> Tree<B> {
         best
     }
 }
+
+impl<B: Bound> Tree<B> {
+    /// Calls `visit(depth, bound)` for the root (depth 0) and every internal
+    /// node below it, parents before children, with the bound the parent
+    /// keeps for it (its fat bound); leaves are not visited. What a debug
+    /// view draws to show the tree by depth.
+    ///
+    /// ```
+    /// use bvol_tree::Tree;
+    /// use bvol_volumes::Aabb;
+    /// use glam::Vec3;
+    ///
+    /// let at = |x: f32| Aabb::new(Vec3::splat(x), Vec3::splat(x + 1.0));
+    /// let tree = Tree::from_bounds(&[at(0.0), at(2.0), at(4.0), at(6.0)])?;
+    /// let mut depths = Vec::new();
+    /// tree.visit_nodes(|depth, _| depths.push(depth));
+    /// assert_eq!(depths.len(), 3); // 4 leaves, 3 internal nodes
+    /// assert_eq!(depths[0], 0);
+    /// # Ok::<(), bvol_tree::TreeError>(())
+    /// ```
+    pub fn visit_nodes(&self, mut visit: impl FnMut(usize, &B)) {
+        if !self.root.is_node() {
+            return;
+        }
+        visit(0, &self.root_bound);
+        let mut stack = vec![(self.root.index(), 0)];
+        while let Some((x, depth)) = stack.pop() {
+            let n = &self.nodes[x as usize];
+            for side in 0..2 {
+                if n.child[side].is_node() {
+                    visit(depth + 1, &n.bounds[side]);
+                    stack.push((n.child[side].index(), depth + 1));
+                }
+            }
+        }
+    }
+}

@@ -273,11 +273,32 @@ impl<B: TestBound> Check<B> {
         for id in 0..IDS {
             prop_assert_eq!(self.tree.bound(id), self.model[id as usize]);
         }
+        self.check_nodes()?;
         let want = brute_pairs(&leaves);
         let mut got = self.tree.pairs();
         prop_assert!(got.iter().all(|(a, b)| a < b));
         got.sort_unstable();
         prop_assert_eq!(&got, &want);
+        Ok(())
+    }
+
+    /// `visit_nodes`: one visit per internal node (a binary tree over n
+    /// leaves has n - 1), the root first at depth 0, at most 2^d nodes at
+    /// depth d, every node inside the root's bound.
+    fn check_nodes(&self) -> Result<(), TestCaseError> {
+        let mut visits = Vec::new();
+        self.tree.visit_nodes(|depth, bound| visits.push((depth, *bound)));
+        prop_assert_eq!(visits.len(), self.tree.len().saturating_sub(1));
+        if let Some(&(depth, bound)) = visits.first() {
+            prop_assert_eq!(depth, 0);
+            prop_assert_eq!(Some(bound), self.tree.root_bound());
+            let mut per_depth = vec![0usize; visits.len()];
+            for (depth, b) in &visits {
+                per_depth[*depth] += 1;
+                prop_assert!(bound.contains(b));
+            }
+            prop_assert!(per_depth.iter().enumerate().all(|(d, &k)| k <= 1 << d.min(40)));
+        }
         Ok(())
     }
 

@@ -1,0 +1,80 @@
+//! One drawn frame, the same in a window and headless: advance the
+//! simulation, lay out the UI, build the draw list, draw.
+
+use std::time::Instant;
+
+use egui::Rect;
+
+use crate::app::{App, FrameRecord};
+use crate::overlay;
+use crate::render::{DrawList, Gpu, Renderer, UiFrame};
+use crate::shapes::RenderMesh;
+
+/// What draws the app: the renderer, the UI context, the reused draw list.
+pub struct Frontend {
+    renderer: Renderer,
+    /// egui's context.
+    pub ctx: egui::Context,
+    list: DrawList,
+    /// Meshes uploaded: the library's.
+    meshes: usize,
+    /// The last frame's world-to-clip matrix and 3D viewport (pixels: x, y,
+    /// width, height), for what the stats file says of the image.
+    pub last_view: (glam::Mat4, [f32; 4]),
+}
+
+impl Frontend {
+    /// A frontend drawing `app`'s shapes into targets of `format`.
+    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, app: &App) -> Frontend {
+        let meshes: Vec<&RenderMesh> = app.library.entries.iter().map(|e| &e.mesh).collect();
+        let ctx = egui::Context::default();
+        ctx.set_visuals(egui::Visuals::dark());
+        Frontend {
+            renderer: Renderer::new(gpu, format, &meshes),
+            ctx,
+            list: DrawList::default(),
+            meshes: meshes.len(),
+            last_view: (glam::Mat4::IDENTITY, [0.0; 4]),
+        }
+    }
+
+    /// Runs one frame into `target` of `size` pixels: the simulation steps
+    /// it owes, the UI from `input`, the scene and the UI drawn and
+    /// submitted. Returns the frame's figures (frame time up to the submit:
+    /// the caller adds presenting or waiting) and egui's platform output.
+    pub fn frame(
+        &mut self,
+        app: &mut App,
+        gpu: &Gpu,
+        target: &wgpu::TextureView,
+        size: [u32; 2],
+        input: egui::RawInput,
+    ) -> (FrameRecord, egui::PlatformOutput) {
+        let start = Instant::now();
+        let mut record = app.advance();
+        let mut view = Rect::NOTHING;
+        let output = self.ctx.run_ui(input, |ui| view = crate::ui::show(ui, app));
+        overlay::build(app, &mut self.list, self.meshes);
+        let ppp = output.pixels_per_point;
+        let viewport = [view.left() * ppp, view.top() * ppp, view.width() * ppp, view.height() * ppp];
+        let view_proj = app.camera.view_proj(view.width() / view.height().max(1.0));
+        let ui = UiFrame {
+            primitives: self.ctx.tessellate(output.shapes, ppp),
+            textures: output.textures_delta,
+            pixels_per_point: ppp,
+        };
+        let viewport = clamp_viewport(viewport, size);
+        self.last_view = (view_proj, viewport);
+        self.renderer.render(gpu, target, size, (&self.list, view_proj, viewport), ui);
+        record.frame = start.elapsed();
+        record.render = record.frame.saturating_sub(record.physics);
+        (record, output.platform_output)
+    }
+}
+
+/// The viewport inside the target (wgpu rejects one that sticks out).
+fn clamp_viewport([x, y, w, h]: [f32; 4], [width, height]: [u32; 2]) -> [f32; 4] {
+    let (width, height) = (width as f32, height as f32);
+    let (x, y) = (x.clamp(0.0, width), y.clamp(0.0, height));
+    [x, y, w.clamp(0.0, width - x), h.clamp(0.0, height - y)]
+}
