@@ -182,7 +182,8 @@ impl App {
             self.report(format!("refit with {} / {} failed: {e}", fit.sphere, fit.obb));
             return;
         }
-        let shapes: Vec<Arc<Shape>> = self.library.entries.iter().map(|e| e.shape.clone()).collect();
+        let shapes: Vec<Arc<Shape>> =
+            self.library.entries.iter().map(|e| e.shape.clone()).collect();
         match self.sim.replace_shapes(&shapes) {
             Ok(()) => self.settings.fit = fit,
             Err(e) => self.report(format!("could not hand the bodies their refitted shapes: {e}")),
@@ -230,8 +231,7 @@ impl App {
         let (origin, direction) = self.camera.ray(aspect, at);
         let ray = bvol::volumes::Ray::new(origin, direction);
         self.selected = self.sim.world().ray_cast(&ray, 1e4).map(|hit| hit.body);
-        if self.selected.is_some_and(|id| self.sim.world().kind(id) == Ok(bvol::BodyKind::Static))
-        {
+        if self.selected.is_some_and(|id| self.sim.world().kind(id) == Ok(bvol::BodyKind::Static)) {
             self.selected = None;
         }
     }

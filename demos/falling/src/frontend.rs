@@ -56,7 +56,8 @@ impl Frontend {
         let output = self.ctx.run_ui(input, |ui| view = crate::ui::show(ui, app));
         overlay::build(app, &mut self.list, self.meshes);
         let ppp = output.pixels_per_point;
-        let viewport = [view.left() * ppp, view.top() * ppp, view.width() * ppp, view.height() * ppp];
+        let viewport =
+            [view.left() * ppp, view.top() * ppp, view.width() * ppp, view.height() * ppp];
         let view_proj = app.camera.view_proj(view.width() / view.height().max(1.0));
         let ui = UiFrame {
             primitives: self.ctx.tessellate(output.shapes, ppp),

@@ -68,7 +68,8 @@ fn parse_size(text: &str) -> Result<[u32; 2], String> {
 
 fn main() -> ExitCode {
     let args = Args::parse();
-    let mut files = if args.no_default_meshes { Vec::new() } else { ShapeLibrary::default_mesh_files() };
+    let mut files =
+        if args.no_default_meshes { Vec::new() } else { ShapeLibrary::default_mesh_files() };
     files.extend(args.meshes.iter().cloned());
     let library = ShapeLibrary::load(&files, bvol::FitOptions::default());
     let mut app = App::new(library, args.seed);

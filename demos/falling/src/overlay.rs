@@ -1,8 +1,8 @@
 //! What a frame draws, built from the app's state: each body as an instance
 //! of its shape's mesh, and the overlays the user switched on as lines.
 
-use bvol::volumes::{Aabb, Obb, Sphere};
 use bvol::BodyId;
+use bvol::volumes::{Aabb, Obb, Sphere};
 use glam::{Mat3, Mat4, Quat, Vec3};
 
 use crate::app::App;
@@ -44,15 +44,15 @@ pub fn build(app: &App, list: &mut DrawList, meshes: usize) {
             body_color(body.shape, body.id, body.asleep)
         };
         list.instances[body.shape].push(Instance::new(model, color));
-        if s.show_spheres {
-            if let Ok(sphere) = world.world_sphere(body.id) {
-                sphere_lines(list, &sphere, SPHERE_COLOR, false);
-            }
+        if s.show_spheres
+            && let Ok(sphere) = world.world_sphere(body.id)
+        {
+            sphere_lines(list, &sphere, SPHERE_COLOR, false);
         }
-        if s.show_obbs {
-            if let Ok(obb) = world.world_obb(body.id) {
-                obb_lines(list, &obb, OBB_COLOR, false);
-            }
+        if s.show_obbs
+            && let Ok(obb) = world.world_obb(body.id)
+        {
+            obb_lines(list, &obb, OBB_COLOR, false);
         }
     }
     if s.show_tree {
@@ -146,7 +146,14 @@ fn sphere_lines(list: &mut DrawList, sphere: &Sphere, color: [f32; 4], on_top: b
 }
 
 /// The 12 edges of a box given by its centre, axes (columns) and half extents.
-fn box_lines(list: &mut DrawList, center: Vec3, axes: Mat3, half: Vec3, color: [f32; 4], on_top: bool) {
+fn box_lines(
+    list: &mut DrawList,
+    center: Vec3,
+    axes: Mat3,
+    half: Vec3,
+    color: [f32; 4],
+    on_top: bool,
+) {
     let corner = |k: usize| {
         let sign = |bit: usize| if k & bit != 0 { 1.0 } else { -1.0 };
         center + axes * Vec3::new(sign(1) * half.x, sign(2) * half.y, sign(4) * half.z)

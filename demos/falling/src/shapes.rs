@@ -312,3 +312,177 @@ fn push_triangle(out: &mut RenderMesh, corners: [Vec3; 3], normals: [Vec3; 3]) {
     out.normals.extend(normals);
     out.indices.extend([base, base + 1, base + 2]);
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use bvol::volumes::{Obb, ObbMethod, SphereMethod};
+
+    /// A file in a fresh temporary folder of this test run.
+    fn temp_file(name: &str, contents: &[u8]) -> PathBuf {
+        let dir = std::env::temp_dir().join(format!("falling-shapes-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let path = dir.join(name);
+        std::fs::write(&path, contents).unwrap();
+        path
+    }
+
+    /// Signed volume of a closed triangle mesh (positive when wound outward);
+    /// nearly so for a mesh with small holes.
+    fn signed_volume(mesh: &RenderMesh) -> f32 {
+        let p = |i: u32| mesh.positions[i as usize];
+        mesh.indices.chunks_exact(3).map(|t| p(t[0]).dot(p(t[1]).cross(p(t[2])))).sum::<f32>() / 6.0
+    }
+
+    /// Whether `p` lies in the OBB grown by `pad`.
+    fn in_obb(obb: &Obb, p: Vec3, pad: f32) -> bool {
+        let d = p - obb.center;
+        (0..3).all(|i| d.dot(obb.axes.col(i)).abs() <= obb.half_extents[i] + pad)
+    }
+
+    #[test]
+    fn default_library_has_the_primitives_and_the_assets() {
+        let files = ShapeLibrary::default_mesh_files();
+        let stems: Vec<_> = files.iter().filter_map(|f| f.file_stem()?.to_str()).collect();
+        for asset in ["bunny", "duck", "teapot"] {
+            assert!(stems.contains(&asset), "{asset} missing from {files:?}");
+        }
+        let library = ShapeLibrary::load(&files, FitOptions::default());
+        assert!(library.errors.is_empty(), "{:?}", library.errors);
+        let names: Vec<&str> = library.entries.iter().map(|e| e.name.as_str()).collect();
+        assert_eq!(names[..4], ["box", "ball", "capsule", "tetrahedron"]);
+        assert_eq!(names[4..], stems);
+        for entry in &library.entries {
+            let radius = entry.shape.sphere().radius;
+            assert!((0.3..=0.6).contains(&radius), "{}: radius {radius}", entry.name);
+        }
+        assert!(matches!(library.entries[1].shape.parts(), [Part::Ball(_)]));
+    }
+
+    #[test]
+    fn bad_files_are_reported_and_the_rest_load() {
+        let missing = std::env::temp_dir().join("falling-no-such-dir/none.obj");
+        let broken = temp_file("broken.obj", b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
+        let flat = temp_file("flat.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+        let binary = temp_file("binary.obj", &[0xff, 0xfe, 0x00, 0x81]);
+        let mut files = vec![missing.clone(), broken.clone(), flat.clone(), binary.clone()];
+        files.extend(ShapeLibrary::default_mesh_files());
+        let library = ShapeLibrary::load(&files, FitOptions::default());
+        let good = ShapeLibrary::default_mesh_files().len();
+        assert_eq!(library.entries.len(), 4 + good, "primitives and the good assets");
+        assert_eq!(library.errors.len(), 4, "{:#?}", library.errors);
+        for (error, file) in library.errors.iter().zip([&missing, &broken, &flat, &binary]) {
+            assert!(error.contains(&*file.to_string_lossy()), "{error} should name {file:?}");
+        }
+    }
+
+    #[test]
+    fn inside_out_files_are_turned_outward() {
+        // A cube off the origin whose quads all wind clockwise seen from outside.
+        let mut obj = String::new();
+        for i in 0..8 {
+            let bit = |b: i32| if i >> b & 1 == 1 { 3.0 } else { 1.0 };
+            obj += &format!("v {} {} {}\n", bit(0), bit(1), bit(2) + 5.0);
+        }
+        for quad in ["1 2 4 3", "5 7 8 6", "1 5 6 2", "3 4 8 7", "1 3 7 5", "2 6 8 4"] {
+            obj += &format!("f {quad}\n");
+        }
+        let path = temp_file("inside-out.obj", obj.as_bytes());
+        let raw = bvol::load_obj(&path).unwrap();
+        let at = |i: u32| raw[0].positions[i as usize];
+        let raw_volume: f32 =
+            raw[0].triangles.iter().map(|t| at(t[0]).dot(at(t[1]).cross(at(t[2])))).sum();
+        assert!(raw_volume < 0.0, "the file is wound inward");
+        let library = ShapeLibrary::load(&[path], FitOptions::default());
+        assert!(library.errors.is_empty(), "{:?}", library.errors);
+        let mesh = &library.entries[4].mesh;
+        assert_eq!(mesh.indices.len(), 36);
+        assert!(signed_volume(mesh) > 0.0);
+        for t in mesh.indices.chunks_exact(3) {
+            let centre = t.iter().map(|&i| mesh.positions[i as usize]).sum::<Vec3>() / 3.0;
+            assert!(mesh.normals[t[0] as usize].dot(centre) > 0.0, "the cube is centred");
+        }
+        // Side 2 scaled so that its corners are MESH_RADIUS from the centre.
+        let half = library.entries[4].shape.obb().half_extents;
+        let expected = MESH_RADIUS / 3f32.sqrt();
+        assert!((half - Vec3::splat(expected)).abs().max_element() < 1e-4, "{half}");
+    }
+
+    #[test]
+    fn render_meshes_are_outward_and_inside_the_bounds() {
+        let mut library =
+            ShapeLibrary::load(&ShapeLibrary::default_mesh_files(), FitOptions::default());
+        let fits = [
+            FitOptions::default(),
+            FitOptions { sphere: SphereMethod::Ritter, obb: ObbMethod::PcaPoints },
+            FitOptions { sphere: SphereMethod::Centroid, obb: ObbMethod::Dito14 },
+        ];
+        for fit in fits {
+            library.refit(fit).unwrap();
+            for entry in &library.entries {
+                let (mesh, name) = (&entry.mesh, &entry.name);
+                assert_eq!(mesh.positions.len(), mesh.normals.len());
+                assert!(!mesh.indices.is_empty() && mesh.indices.len() % 3 == 0);
+                assert!(mesh.indices.iter().all(|&i| (i as usize) < mesh.positions.len()));
+                assert!(mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4), "{name}");
+                assert!(signed_volume(mesh) > 0.0, "{name} is wound inward");
+                let (obb, sphere) = (entry.shape.obb(), entry.shape.sphere());
+                for &p in &mesh.positions {
+                    assert!(in_obb(&obb, p, 1e-4), "{name}: {p} out of its OBB");
+                    assert!(p.distance(sphere.center) <= sphere.radius + 1e-4, "{name}: {p}");
+                }
+            }
+        }
+    }
+
+    #[test]
+    fn convex_primitives_face_away_from_their_centre() {
+        let library = ShapeLibrary::load(&[], FitOptions::default());
+        assert_eq!(library.entries.len(), 4);
+        for entry in &library.entries {
+            let m = &entry.mesh;
+            for t in m.indices.chunks_exact(3) {
+                let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
+                let centre = (a + b + c) / 3.0;
+                // Winding and normals agree, and both point out of the convex solid.
+                let face = (b - a).cross(c - a);
+                assert!(face.dot(centre) > 0.0, "{}: triangle {t:?} faces in", entry.name);
+                let n = m.normals[t[0] as usize];
+                assert!(n.dot(centre) > 0.0, "{}: normal {n} points in", entry.name);
+            }
+        }
+        let volume = signed_volume(&library.entries[1].mesh);
+        let ball = 4.0 / 3.0 * std::f32::consts::PI * BALL_RADIUS.powi(3);
+        assert!((volume - ball).abs() < 0.05 * ball, "the ball mesh is a sphere");
+    }
+
+    #[test]
+    fn meshes_are_centred_on_their_hull_centre_of_mass() {
+        let library =
+            ShapeLibrary::load(&ShapeLibrary::default_mesh_files(), FitOptions::default());
+        for entry in library.entries.iter().filter(|e| e.source.is_some()) {
+            let [Part::Hull(part)] = entry.shape.parts() else { panic!("one hull") };
+            let hull = &part.hull;
+            let inside = |p: Vec3| {
+                let p = p.as_dvec3();
+                (0..hull.face_count()).all(|f| hull.face_normal(f).dot(p) <= hull.face_offset(f))
+            };
+            // The mean of a grid's points inside the hull: its centroid, measured
+            // independently of the tetrahedra that placed it.
+            let n = 40;
+            let (mut sum, mut count) = (Vec3::ZERO, 0);
+            for i in 0..n * n * n {
+                let cell = Vec3::new((i % n) as f32, ((i / n) % n) as f32, (i / (n * n)) as f32);
+                let p = (cell + 0.5) / n as f32 * 2.0 * MESH_RADIUS - MESH_RADIUS;
+                if inside(p) {
+                    sum += p;
+                    count += 1;
+                }
+            }
+            let centroid = sum / count as f32;
+            assert!(centroid.length() < 0.01, "{}: centroid {centroid}", entry.name);
+            let far = entry.mesh.positions.iter().map(|p| p.length()).fold(0.0, f32::max);
+            assert!((far - MESH_RADIUS).abs() < 1e-4, "{}: scaled to {far}", entry.name);
+        }
+    }
+}

@@ -1,15 +1,25 @@
 //! The demo's own rigid-body integrator, on top of bvol's contacts.
 //!
 //! One step (Catto, "Iterative Dynamics with Temporal Coherence", GDC 2005,
-//! as Box2D's contact solver does it): sleeping bodies touched hard wake up,
-//! gravity and damping act on the awake bodies' velocities, every contact
-//! point of the last [`World::update`] becomes a normal constraint (impulse
-//! `>= 0`, Baumgarte position bias past a slop, restitution above a speed)
-//! and two friction constraints (impulses within `mu` times the normal
-//! one), warm-started with last step's impulses and solved by sequential
-//! impulses; then positions integrate, bodies still for long enough fall
-//! asleep, the awake bodies' poses go to the world in one `set_poses` call,
-//! and the world's update finds the contacts of the next step.
+//! as Box2D's contact solver does it):
+//! 1. sleeping bodies that an awake body touches fast wake up;
+//! 2. gravity and damping act on the awake bodies' velocities;
+//! 3. every contact point of the last [`World::update`] becomes a normal
+//!    constraint (impulse `>= 0`, Baumgarte position bias past a slop,
+//!    restitution above an approach speed) and two friction constraints
+//!    (impulses within `mu` times the normal one), and each touching pair a
+//!    rolling-resistance constraint; all are warm-started with last step's
+//!    impulses (points matched by position in body A's frame) and solved by
+//!    sequential impulses, sleeping bodies and the floor immovable;
+//! 4. positions integrate; bodies slow on average for `sleep_time` fall
+//!    asleep (the world keeps them with the static bodies);
+//! 5. the awake bodies' poses go to the world in one `set_poses` call, and
+//!    the world's update finds the contacts of the next step (and wakes a
+//!    sleeping body whose contact with an awake one ended).
+//!
+//! Nothing allocates per step once the reused buffers have grown (the
+//! world's update aside), and nothing depends on hash order: pairs are
+//! solved in the world's event order, the warm-start map is only looked up.
 //!
 //! A body's origin is its centre of mass: [`crate::shapes`] centres every
 //! shape so. Density is 1, so a body's mass is its volume.
@@ -20,7 +30,7 @@ use std::time::{Duration, Instant};
 
 use bvol::narrow::Contact;
 use bvol::volumes::Pose;
-use bvol::{BodyDesc, BodyId, BodyKind, FrameStats, Part, Shape, World, WorldError};
+use bvol::{BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Part, Shape, World, WorldError};
 use glam::{Mat3, Quat, Vec3};
 
 /// Half the side of the square floor.
@@ -34,7 +44,12 @@ const FALL_LIMIT: f32 = 50.0;
 /// The most a body moves and turns in one step (Box2D's `b2_maxTranslation`
 /// and `b2_maxRotation`): a bound that keeps a bad contact from launching it.
 const MAX_TRANSLATION: f32 = 2.0;
+/// The most a body turns in one step (rad).
 const MAX_ROTATION: f32 = 0.25 * std::f32::consts::PI;
+/// Time constant (s) of the velocity average the sleep test reads: a body
+/// wedged between sleeping ones may rock a little each step, one way then
+/// the other, as its contacts switch features; on average it is still.
+const SLEEP_SMOOTHING: f32 = 0.1;
 /// Contact points of a pair, this step and the last, are the same point for
 /// warm starting when they are this close in body A's frame.
 const WARM_MATCH_DISTANCE: f32 = 0.1;
@@ -93,7 +108,7 @@ impl Default for SimConfig {
             restitution: 0.2,
             restitution_threshold: 1.0,
             friction: 0.6,
-            rolling_resistance: 0.02,
+            rolling_resistance: 0.05,
             baumgarte: 0.2,
             slop: 0.005,
             max_bias_speed: 4.0,
@@ -130,6 +145,10 @@ pub struct Body {
     inv_inertia: Mat3,
     /// How long it has been slow enough to sleep (s).
     still_time: f32,
+    /// Linear and angular velocity averaged over about [`SLEEP_SMOOTHING`]:
+    /// what the sleep test reads.
+    mean_velocity: Vec3,
+    mean_angular_velocity: Vec3,
 }
 
 impl Body {
@@ -245,15 +264,20 @@ pub struct Sim {
     solver_time: Duration,
 }
 
+/// The floor every [`Sim`] starts with: a static box whose top face is
+/// y = 0, the first body of its world.
+pub fn floor() -> BodyDesc {
+    let half = Vec3::new(FLOOR_HALF_EXTENT, FLOOR_HALF_THICKNESS, FLOOR_HALF_EXTENT);
+    let floor = Shape::cuboid(half).expect("the floor's sizes are finite and positive");
+    let pose = Pose::new(Vec3::NEG_Y * FLOOR_HALF_THICKNESS, Quat::IDENTITY);
+    BodyDesc::new(Arc::new(floor), pose).with_kind(BodyKind::Static)
+}
+
 impl Sim {
     /// A world with a static floor: a box whose top face is y = 0.
     pub fn new(config: SimConfig) -> Sim {
         let mut world = World::new();
-        let half = Vec3::new(FLOOR_HALF_EXTENT, FLOOR_HALF_THICKNESS, FLOOR_HALF_EXTENT);
-        let floor = Shape::cuboid(half).expect("the floor's sizes are finite and positive");
-        let pose = Pose::new(Vec3::NEG_Y * FLOOR_HALF_THICKNESS, Quat::IDENTITY);
-        let desc = BodyDesc::new(Arc::new(floor), pose).with_kind(BodyKind::Static);
-        world.add_body(desc).expect("an empty world takes a body at a finite pose");
+        world.add_body(floor()).expect("an empty world takes a body at a finite pose");
         Sim {
             config,
             world,
@@ -314,6 +338,8 @@ impl Sim {
             inv_mass,
             inv_inertia,
             still_time: 0.0,
+            mean_velocity: Vec3::ZERO,
+            mean_angular_velocity: Vec3::ZERO,
         });
         self.map_slot(id, index);
         Ok(())
@@ -335,8 +361,11 @@ impl Sim {
 
     /// After a refit of the library: body `i` gets `shapes[body.shape]`
     /// (bodies whose index has no shape keep theirs), with its pose, motion,
-    /// sleep and warm-start impulses kept. The world is updated once so that
-    /// [`contacts`](Sim::contacts) names the new handles.
+    /// sleep and warm-start impulses kept. bvol has no call to change a
+    /// body's shape, so each body is removed and added again (same slot, new
+    /// handle); the world is updated once so that
+    /// [`contacts`](Sim::contacts) names the new handles. Fails only if the
+    /// world refuses a body it held a moment before.
     pub fn replace_shapes(&mut self, shapes: &[Arc<Shape>]) -> Result<(), WorldError> {
         let mut new_shapes = Vec::with_capacity(self.bodies.len());
         for body in &self.bodies {
@@ -419,9 +448,14 @@ impl Sim {
         self.body_at_slot[slot] = index as u32;
     }
 
-    /// The body index of a handle, [`STATIC`] for the floor.
+    /// The body index of a handle, [`STATIC`] for the floor and for a
+    /// handle no longer live (the slot's generation tells).
     fn body_index(&self, id: BodyId) -> u32 {
-        self.body_at_slot.get(id.index() as usize).copied().unwrap_or(STATIC)
+        let index = self.body_at_slot.get(id.index() as usize).copied().unwrap_or(STATIC);
+        match self.bodies.get(index as usize) {
+            Some(body) if body.id == id => index,
+            _ => STATIC,
+        }
     }
 
     /// Runs the collision update and keeps its touching pairs.
@@ -432,13 +466,31 @@ impl Sim {
         self.contacts.clear();
         self.contacts
             .extend(self.world.events().iter().filter_map(|e| Some((e.a, e.b, e.contact?))));
+        self.wake_left();
         stats
     }
 
+    /// Wakes each sleeping body whose contact with an awake body ended: it
+    /// may have lost what held it up (per body, Box2D would wake the island).
+    fn wake_left(&mut self) {
+        for k in 0..self.world.events().len() {
+            let event = self.world.events()[k];
+            if event.kind != EventKind::Ended {
+                continue;
+            }
+            let (ia, ib) = (self.body_index(event.a), self.body_index(event.b));
+            match (self.asleep(ia), self.asleep(ib)) {
+                (Some(true), Some(false)) => self.wake(ia),
+                (Some(false), Some(true)) => self.wake(ib),
+                _ => {}
+            }
+        }
+    }
+
     /// Wakes each sleeping body that an awake one touches moving faster than
-    /// `wake_speed` relative to it at a contact point: hit, or left by what
-    /// held it. Per body, not per island: the bodies it touches then wake in
-    /// turn when it moves them.
+    /// `wake_speed` relative to it at a contact point (hit, or pushed, or
+    /// slid off). Per body, not per island: the bodies it touches then wake
+    /// in turn when it moves them.
     fn wake_touched(&mut self) {
         for k in 0..self.contacts.len() {
             let (a, b, contact) = self.contacts[k];
@@ -454,14 +506,20 @@ impl Sim {
                 v.length_squared() > self.config.wake_speed * self.config.wake_speed
             });
             if fast {
-                let body = &mut self.bodies[sleeper as usize];
-                body.asleep = false;
-                body.still_time = 0.0;
-                let id = body.id;
-                // A live handle: set_kind cannot fail.
-                self.world.set_kind(id, BodyKind::Dynamic).ok();
+                self.wake(sleeper);
             }
         }
+    }
+
+    /// Wakes body `index`: it moves, and is moved, from this step on.
+    fn wake(&mut self, index: u32) {
+        let body = &mut self.bodies[index as usize];
+        body.asleep = false;
+        body.still_time = 0.0;
+        body.mean_velocity = Vec3::ZERO;
+        body.mean_angular_velocity = Vec3::ZERO;
+        // A live handle: set_kind cannot fail.
+        self.world.set_kind(body.id, BodyKind::Dynamic).ok();
     }
 
     /// Whether body `index` sleeps; `None` for the floor.
@@ -671,14 +729,17 @@ impl Sim {
         }
     }
 
-    /// Counts how long each awake body has been slow, and picks those slow
+    /// Counts how long each awake body has been slow on average, and picks those slow
     /// for `sleep_time` (or fallen far below the floor) to fall asleep.
     fn update_sleep(&mut self) {
         let c = &self.config;
         self.falling_asleep.clear();
+        let k = (c.dt / SLEEP_SMOOTHING).min(1.0);
         for (i, body) in self.bodies.iter_mut().enumerate().filter(|(_, b)| !b.asleep) {
-            let slow = body.velocity.length_squared() < c.sleep_linear_speed.powi(2)
-                && body.angular_velocity.length_squared() < c.sleep_angular_speed.powi(2);
+            body.mean_velocity += (body.velocity - body.mean_velocity) * k;
+            body.mean_angular_velocity += (body.angular_velocity - body.mean_angular_velocity) * k;
+            let slow = body.mean_velocity.length_squared() < c.sleep_linear_speed.powi(2)
+                && body.mean_angular_velocity.length_squared() < c.sleep_angular_speed.powi(2);
             body.still_time = if slow { body.still_time + c.dt } else { 0.0 };
             if body.still_time >= c.sleep_time || body.position.y < -FALL_LIMIT {
                 self.falling_asleep.push(i);
@@ -776,4 +837,291 @@ fn mass_properties(shape: &Shape) -> (f32, Mat3) {
         )))
     };
     (1.0 / mass, inv_inertia)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::ShapeLibrary;
+    use bvol::FitOptions;
+    use bvol::volumes::{ObbMethod, SphereMethod};
+
+    /// The lowest point of a body: its hull vertices or balls, moved by its pose.
+    fn lowest_point(body: &Body, shape: &Shape) -> f32 {
+        let pose = body.pose();
+        let part_low = |part: &Part| match part {
+            Part::Hull(h) => h
+                .hull
+                .vertices()
+                .iter()
+                .map(|&v| pose.transform_point(v).y)
+                .fold(f32::MAX, f32::min),
+            Part::Ball(s) => pose.transform_point(s.center).y - s.radius,
+        };
+        shape.parts().iter().map(part_low).fold(f32::MAX, f32::min)
+    }
+
+    /// `n` bodies of the library's shapes in turn, on a jittered grid from
+    /// 1 m up, each turned differently.
+    fn drop_pile(sim: &mut Sim, library: &ShapeLibrary, n: usize) {
+        let side = 6;
+        for k in 0..n {
+            let (x, z, y) = (k % side, (k / side) % side, k / (side * side));
+            let jitter = Vec3::new(0.1 * (k * 7 % 5) as f32, 0.0, 0.1 * (k * 3 % 5) as f32);
+            let position =
+                Vec3::new(x as f32 * 1.3 - 4.0, 1.0 + y as f32 * 1.2, z as f32 * 1.3 - 4.0);
+            let rotation = Quat::from_euler(glam::EulerRot::XYZ, k as f32, k as f32 * 1.7, 0.3);
+            let s = k % library.entries.len();
+            let pose = Pose::new(position + jitter, rotation);
+            sim.add_body(s, library.entries[s].shape.clone(), pose, Vec3::ZERO).unwrap();
+        }
+    }
+
+    fn default_library() -> ShapeLibrary {
+        let library =
+            ShapeLibrary::load(&ShapeLibrary::default_mesh_files(), FitOptions::default());
+        assert!(library.errors.is_empty(), "{:?}", library.errors);
+        assert!(library.entries.len() >= 7, "4 primitives and the 3 assets");
+        library
+    }
+
+    #[test]
+    fn pile_comes_to_rest_above_the_floor() {
+        let library = default_library();
+        let mut sim = Sim::new(SimConfig::default());
+        drop_pile(&mut sim, &library, 200);
+        let mut deepest = f32::MAX;
+        for _ in 0..900 {
+            let stats = sim.step();
+            // The contacts are the world's touching pairs, no more, no fewer.
+            assert_eq!(sim.contacts().len(), stats.touching);
+            for body in sim.bodies() {
+                assert!(body.position.is_finite() && body.velocity.is_finite());
+                deepest = deepest.min(lowest_point(body, &library.entries[body.shape].shape));
+            }
+        }
+        let settled: Vec<f32> =
+            sim.bodies().iter().map(|b| lowest_point(b, &library.entries[b.shape].shape)).collect();
+        let lowest = settled.iter().copied().fold(f32::MAX, f32::min);
+        assert!(lowest >= -0.05, "a body ends {lowest} below the floor");
+        // Not even in the impacts does a body sink through.
+        assert!(deepest >= -0.5, "a body sank to {deepest}");
+        let awake = sim.bodies().iter().filter(|b| !b.asleep).count();
+        assert!(awake <= 4, "{awake} of 200 bodies still awake");
+        let energy: f32 =
+            sim.bodies().iter().map(|b| (b.velocity.length_squared() / b.inv_mass) / 2.0).sum();
+        assert!(energy < 1e-3, "kinetic energy {energy}");
+        // Asleep means still: the world holds them as sleeping.
+        for body in sim.bodies().iter().filter(|b| b.asleep) {
+            assert_eq!(sim.world().kind(body.id).unwrap(), BodyKind::Sleeping);
+        }
+    }
+
+    #[test]
+    fn box_dropped_flat_rests_at_its_half_height() {
+        let half = Vec3::new(0.4, 0.25, 0.3);
+        let mut sim = Sim::new(SimConfig::default());
+        let shape = Arc::new(Shape::cuboid(half).unwrap());
+        let pose = Pose::new(Vec3::new(3.0, 2.0, -2.0), Quat::IDENTITY);
+        sim.add_body(0, shape, pose, Vec3::ZERO).unwrap();
+        let mut slept_at = None;
+        for frame in 0..600 {
+            sim.step();
+            if sim.bodies()[0].asleep && slept_at.is_none() {
+                slept_at = Some(frame);
+            }
+        }
+        let body = &sim.bodies()[0];
+        assert!(slept_at.is_some(), "never fell asleep");
+        assert!((body.position.y - half.y).abs() < 0.01, "rests at {}", body.position.y);
+        assert!(body.rotation.angle_between(Quat::IDENTITY) < 0.01);
+        assert!((body.position - Vec3::new(3.0, body.position.y, -2.0)).length() < 0.01);
+    }
+
+    #[test]
+    fn collision_in_free_space_conserves_momentum() {
+        // No gravity and no damping: no outside force.
+        let config = SimConfig {
+            gravity: Vec3::ZERO,
+            linear_damping: 0.0,
+            angular_damping: 0.0,
+            ..SimConfig::default()
+        };
+        let mut sim = Sim::new(config);
+        let (half, radius) = (Vec3::new(0.5, 0.3, 0.4), 0.35f32);
+        // Masses from the geometry at density 1, not from the simulation.
+        let masses =
+            [8.0 * half.x * half.y * half.z, 4.0 / 3.0 * std::f32::consts::PI * radius.powi(3)];
+        let high = Vec3::Y * 10.0;
+        let cuboid = Arc::new(Shape::cuboid(half).unwrap());
+        let turned = Quat::from_rotation_z(0.4);
+        sim.add_body(0, cuboid, Pose::new(high, turned), Vec3::new(1.0, 0.0, 0.2)).unwrap();
+        let ball = Arc::new(Shape::ball(radius).unwrap());
+        let start = high + Vec3::new(3.0, 0.2, 0.0);
+        sim.add_body(1, ball, Pose::new(start, Quat::IDENTITY), Vec3::new(-4.0, 0.0, 0.0)).unwrap();
+        let momentum = |sim: &Sim| -> Vec3 {
+            sim.bodies().iter().zip(masses).map(|(b, m)| b.velocity * m).sum()
+        };
+        let before = momentum(&sim);
+        let mut touched = false;
+        for _ in 0..90 {
+            sim.step();
+            touched |= !sim.contacts().is_empty();
+        }
+        assert!(touched, "the bodies never met");
+        let after = momentum(&sim);
+        assert!(before.distance(after) < 1e-3 * before.length(), "{before} -> {after}");
+        // They did interact: the ball no longer moves as it did.
+        assert!(sim.bodies()[1].velocity.x > -3.0);
+        assert!(sim.bodies()[0].angular_velocity.length() > 1e-3, "an off-centre hit turns it");
+    }
+
+    #[test]
+    fn bounces_only_from_a_fast_approach() {
+        // No position bias, which pushes out at a speed of its own.
+        let config = SimConfig { baumgarte: 0.0, ..SimConfig::default() };
+        let radius = 0.3;
+        let ball = Arc::new(Shape::ball(radius).unwrap());
+        // The speeds just before the first contact and just after it.
+        let bounce = |drop: f32| {
+            let mut sim = Sim::new(config);
+            let pose = Pose::new(Vec3::Y * (radius + drop), Quat::IDENTITY);
+            sim.add_body(0, ball.clone(), pose, Vec3::ZERO).unwrap();
+            while sim.contacts().is_empty() {
+                sim.step();
+            }
+            let before = sim.bodies()[0].velocity.y;
+            sim.step();
+            (before, sim.bodies()[0].velocity.y)
+        };
+        // Dropped 2 m, it meets the floor at about 6.3 m/s, and leaves at e times that.
+        let (before, after) = bounce(2.0);
+        let expected = -before * config.restitution;
+        assert!((after - expected).abs() < 0.1 * expected, "{before} -> {after}, not {expected}");
+        // Dropped 2 cm, it meets it at 0.6 m/s, under the threshold: no bounce.
+        let (before, after) = bounce(0.02);
+        assert!(before < -0.5 && after.abs() < 0.01, "{before} -> {after}");
+    }
+
+    #[test]
+    fn inertia_of_a_box_is_the_box_formula() {
+        let half = Vec3::new(0.5, 0.2, 0.3);
+        let (inv_mass, inv_inertia) = mass_properties(&Shape::cuboid(half).unwrap());
+        let mass = 8.0 * half.x * half.y * half.z;
+        assert!((1.0 / inv_mass - mass).abs() < 1e-4 * mass);
+        let h2 = half * half;
+        let expected = Vec3::new(h2.y + h2.z, h2.x + h2.z, h2.x + h2.y) * mass / 3.0;
+        let inertia = inv_inertia.inverse();
+        assert!(inertia.abs_diff_eq(Mat3::from_diagonal(expected), 1e-4), "{inertia}");
+        let ball = mass_properties(&Shape::ball(0.5).unwrap());
+        let ball_mass = 4.0 / 3.0 * std::f32::consts::PI * 0.125;
+        assert!((ball.1.inverse().x_axis.x - 0.4 * ball_mass * 0.25).abs() < 1e-5);
+    }
+
+    #[test]
+    fn sleeping_body_wakes_when_hit_and_sleeps_again() {
+        let mut sim = Sim::new(SimConfig::default());
+        let cuboid = Arc::new(Shape::cuboid(Vec3::new(0.5, 0.2, 0.5)).unwrap());
+        sim.add_body(0, cuboid, Pose::new(Vec3::Y * 0.2, Quat::IDENTITY), Vec3::ZERO).unwrap();
+        for _ in 0..60 {
+            sim.step();
+        }
+        assert!(sim.bodies()[0].asleep);
+        let rest = sim.bodies()[0].position;
+        let ball = Arc::new(Shape::ball(0.3).unwrap());
+        let above = Pose::new(Vec3::new(0.3, 2.0, 0.0), Quat::IDENTITY);
+        sim.add_body(1, ball, above, Vec3::ZERO).unwrap();
+        let mut woke = false;
+        for _ in 0..600 {
+            sim.step();
+            woke |= !sim.bodies()[0].asleep;
+        }
+        assert!(woke, "the hit did not wake it");
+        assert!(sim.bodies().iter().all(|b| b.asleep), "not back to sleep");
+        let ball = &sim.bodies()[1];
+        assert!(ball.position.y > 0.2, "the ball fell through the box: {}", ball.position);
+        assert!(sim.bodies()[0].position.y > rest.y - 0.01);
+    }
+
+    #[test]
+    fn replace_shapes_keeps_the_state() {
+        let mut library = default_library();
+        let mut sim = Sim::new(SimConfig::default());
+        drop_pile(&mut sim, &library, 40);
+        for _ in 0..120 {
+            sim.step();
+        }
+        let before: Vec<Body> = sim.bodies().to_vec();
+        let fit = FitOptions { sphere: SphereMethod::Ritter, obb: ObbMethod::PcaPoints };
+        library.refit(fit).unwrap();
+        sim.replace_shapes(&library.shapes()).unwrap();
+        assert_eq!(sim.world().len(), 41, "the floor and the 40 bodies");
+        for (i, (old, new)) in before.iter().zip(sim.bodies()).enumerate() {
+            assert_eq!((old.position, old.rotation), (new.position, new.rotation));
+            assert_eq!((old.velocity, old.asleep), (new.velocity, new.asleep));
+            let shape = sim.world().shape(new.id).unwrap();
+            assert!(Arc::ptr_eq(shape, &library.entries[new.shape].shape));
+            assert_eq!(sim.world().user_data(new.id).unwrap(), i as u64);
+            assert_eq!(sim.world().pose(new.id).unwrap(), new.pose());
+            let kind = if new.asleep { BodyKind::Sleeping } else { BodyKind::Dynamic };
+            assert_eq!(sim.world().kind(new.id).unwrap(), kind);
+        }
+        for _ in 0..600 {
+            sim.step();
+        }
+        assert!(
+            sim.bodies().iter().all(|b| lowest_point(b, &library.entries[b.shape].shape) > -0.05)
+        );
+    }
+
+    #[test]
+    fn reset_leaves_the_floor_alone() {
+        let library = default_library();
+        let mut sim = Sim::new(SimConfig::default());
+        drop_pile(&mut sim, &library, 30);
+        for _ in 0..30 {
+            sim.step();
+        }
+        sim.reset();
+        assert!(sim.bodies().is_empty() && sim.contacts().is_empty());
+        assert_eq!(sim.world().len(), 1);
+        sim.step();
+        drop_pile(&mut sim, &library, 5);
+        for _ in 0..200 {
+            sim.step();
+        }
+        assert_eq!(sim.world().len(), 6);
+        assert!(sim.bodies().iter().all(|b| b.position.y > 0.0 && b.position.y < 1.0));
+    }
+
+    #[test]
+    fn same_input_same_motion() {
+        let library = default_library();
+        let run = || {
+            let mut sim = Sim::new(SimConfig::default());
+            drop_pile(&mut sim, &library, 60);
+            for _ in 0..200 {
+                sim.step();
+            }
+            sim.bodies().iter().map(|b| (b.position, b.rotation, b.velocity)).collect::<Vec<_>>()
+        };
+        assert_eq!(run(), run());
+    }
+
+    #[test]
+    fn bad_input_gives_no_nan() {
+        let mut sim = Sim::new(SimConfig::default());
+        let ball = Arc::new(Shape::ball(0.3).unwrap());
+        let bad = Pose::new(Vec3::new(f32::NAN, 1.0, 0.0), Quat::IDENTITY);
+        assert!(sim.add_body(0, ball.clone(), bad, Vec3::ZERO).is_err());
+        assert!(sim.bodies().is_empty());
+        let unnormalised = Pose::new(Vec3::Y, Quat::from_xyzw(0.0, 0.0, 0.0, 3.0));
+        sim.add_body(0, ball, unnormalised, Vec3::splat(f32::INFINITY)).unwrap();
+        for _ in 0..120 {
+            sim.step();
+        }
+        let body = &sim.bodies()[0];
+        assert!(body.position.is_finite() && body.rotation.is_normalized());
+        assert!((body.position.y - 0.3).abs() < 0.01);
+    }
 }

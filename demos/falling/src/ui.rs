@@ -229,7 +229,11 @@ fn selection(ui: &mut Ui, app: &App) {
     if let Some(body) = app.sim.bodies().iter().find(|b| b.id == id) {
         ui.label(format!("shape: {}", app.library.entries[body.shape].name));
         ui.label(format!("position: {:.2}", body.position));
-        ui.label(format!("speed: {:.2} m/s{}", body.velocity.length(), if body.asleep { " (asleep)" } else { "" }));
+        ui.label(format!(
+            "speed: {:.2} m/s{}",
+            body.velocity.length(),
+            if body.asleep { " (asleep)" } else { "" }
+        ));
     }
     if let (Ok(sphere), Ok(obb)) = (world.world_sphere(id), world.world_obb(id)) {
         ui.label(format!("sphere: radius {:.3}, volume {:.3}", sphere.radius, sphere.volume()));

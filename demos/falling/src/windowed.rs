@@ -35,7 +35,8 @@ pub fn event_loop() -> Result<EventLoop<()>, NoDisplay> {
 
 /// Runs `app` in a window until it is closed (or `run.frames` are drawn).
 pub fn run(app: App, event_loop: EventLoop<()>, run: WindowedRun) -> Result<(), String> {
-    let mut handler = Handler { app, run, window: None, error: None, log: StatsLog::default(), drawn: 0 };
+    let mut handler =
+        Handler { app, run, window: None, error: None, log: StatsLog::default(), drawn: 0 };
     event_loop.run_app(&mut handler).map_err(|e| e.to_string())?;
     if let Some(error) = handler.error {
         return Err(error);
@@ -110,7 +111,8 @@ impl WindowState {
     /// Draws one frame; `None` when the surface gave no texture this time.
     fn draw(&mut self, app: &mut App) -> Result<Option<crate::app::FrameRecord>, String> {
         let texture = match self.surface.get_current_texture() {
-            wgpu::CurrentSurfaceTexture::Success(t) | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
+            wgpu::CurrentSurfaceTexture::Success(t)
+            | wgpu::CurrentSurfaceTexture::Suboptimal(t) => t,
             wgpu::CurrentSurfaceTexture::Outdated | wgpu::CurrentSurfaceTexture::Lost => {
                 self.resize(self.window.inner_size());
                 return Ok(None);

@@ -45,11 +45,12 @@ pub struct Gpu {
 impl Gpu {
     /// Opens the default adapter (honouring `WGPU_BACKEND` and friends),
     /// compatible with `surface` when one is given.
-    pub fn new(instance: &wgpu::Instance, surface: Option<&wgpu::Surface>) -> Result<Gpu, GpuError> {
-        let options = wgpu::RequestAdapterOptions {
-            compatible_surface: surface,
-            ..Default::default()
-        };
+    pub fn new(
+        instance: &wgpu::Instance,
+        surface: Option<&wgpu::Surface>,
+    ) -> Result<Gpu, GpuError> {
+        let options =
+            wgpu::RequestAdapterOptions { compatible_surface: surface, ..Default::default() };
         let adapter = pollster::block_on(instance.request_adapter(&options))
             .map_err(|e| GpuError::NoAdapter(e.to_string()))?;
         let desc = wgpu::DeviceDescriptor {

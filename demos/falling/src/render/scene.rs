@@ -296,7 +296,11 @@ pub const CLEAR_COLOR: wgpu::Color = wgpu::Color { r: 0.11, g: 0.12, b: 0.15, a:
 fn depth_view(device: &wgpu::Device, [width, height]: [u32; 2]) -> wgpu::TextureView {
     let texture = device.create_texture(&wgpu::TextureDescriptor {
         label: Some("depth"),
-        size: wgpu::Extent3d { width: width.max(1), height: height.max(1), depth_or_array_layers: 1 },
+        size: wgpu::Extent3d {
+            width: width.max(1),
+            height: height.max(1),
+            depth_or_array_layers: 1,
+        },
         mip_level_count: 1,
         sample_count: 1,
         dimension: wgpu::TextureDimension::D2,
