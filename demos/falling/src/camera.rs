@@ -43,6 +43,13 @@ impl OrbitCamera {
         proj * glam::camera::rh::view::look_at_mat4(self.eye(), self.target, Vec3::Y)
     }
 
+    /// Pixels per unit of size at unit distance, in a viewport `height`
+    /// pixels high: a sphere of radius r at distance d spans about
+    /// `r * pixels_per_unit(height) / d` pixels in radius.
+    pub fn pixels_per_unit(&self, height: f32) -> f32 {
+        height / (2.0 * (FOV_Y / 2.0).tan())
+    }
+
     /// Orbits by a mouse drag of `delta` points.
     pub fn orbit(&mut self, delta: Vec2) {
         self.yaw -= delta.x * 0.008;
@@ -68,6 +75,25 @@ impl OrbitCamera {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A sphere's radius in pixels, measured on the projected image of a
+    /// point on its rim seen square-on, is what `pixels_per_unit` says.
+    #[test]
+    fn pixels_per_unit_matches_the_projection() {
+        let camera = OrbitCamera { yaw: -0.7, pitch: 0.8, distance: 17.0, ..Default::default() };
+        let (width, height) = (1280.0, 720.0);
+        let view_proj = camera.view_proj(width / height);
+        let eye = camera.eye();
+        let forward = (camera.target - eye).normalize();
+        let up = forward.cross(Vec3::Y).cross(forward).normalize();
+        for (distance, radius) in [(5.0, 0.5), (17.0, 1.0), (60.0, 0.3)] {
+            let centre = eye + forward * distance;
+            let to_pixels = |p: Vec3| view_proj.project_point3(p).y * height / 2.0;
+            let measured = (to_pixels(centre + up * radius) - to_pixels(centre)).abs();
+            let predicted = radius * camera.pixels_per_unit(height) / distance;
+            assert!((measured / predicted - 1.0).abs() < 1e-3, "{measured} vs {predicted}");
+        }
+    }
 
     /// A ray through the viewport's centre points at the target, and a point
     /// projected back lands where the ray through its pixel goes.

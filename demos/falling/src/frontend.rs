@@ -16,8 +16,6 @@ pub struct Frontend {
     /// egui's context.
     pub ctx: egui::Context,
     list: DrawList,
-    /// Meshes uploaded: the library's.
-    meshes: usize,
     /// The last frame's world-to-clip matrix and 3D viewport (pixels: x, y,
     /// width, height), for what the stats file says of the image.
     pub last_view: (glam::Mat4, [f32; 4]),
@@ -26,14 +24,16 @@ pub struct Frontend {
 impl Frontend {
     /// A frontend drawing `app`'s shapes into targets of `format`.
     pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, app: &App) -> Frontend {
-        let meshes: Vec<&RenderMesh> = app.library.entries.iter().map(|e| &e.mesh).collect();
+        // The full meshes, then the far ones: what overlay::build indexes.
+        let entries = &app.library.entries;
+        let meshes: Vec<&RenderMesh> =
+            entries.iter().map(|e| &e.mesh).chain(entries.iter().map(|e| &e.far_mesh)).collect();
         let ctx = egui::Context::default();
         ctx.set_visuals(egui::Visuals::dark());
         Frontend {
             renderer: Renderer::new(gpu, format, &meshes),
             ctx,
             list: DrawList::default(),
-            meshes: meshes.len(),
             last_view: (glam::Mat4::IDENTITY, [0.0; 4]),
         }
     }
@@ -54,10 +54,14 @@ impl Frontend {
         let mut record = app.advance();
         let mut view = Rect::NOTHING;
         let output = self.ctx.run_ui(input, |ui| view = crate::ui::show(ui, app));
-        overlay::build(app, &mut self.list, self.meshes);
         let ppp = output.pixels_per_point;
         let viewport =
             [view.left() * ppp, view.top() * ppp, view.width() * ppp, view.height() * ppp];
+        let seen_from = overlay::View {
+            eye: app.camera.eye(),
+            pixels_per_unit: app.camera.pixels_per_unit(viewport[3]),
+        };
+        overlay::build(app, &mut self.list, seen_from);
         let view_proj = app.camera.view_proj(view.width() / view.height().max(1.0));
         let ui = UiFrame {
             primitives: self.ctx.tessellate(output.shapes, ppp),

@@ -29,10 +29,26 @@ const PALETTE: [[f32; 3]; 8] = [
     [0.80, 0.80, 0.80],
 ];
 
-/// Fills `list` for the app's current state, `meshes` being the number of
-/// library meshes uploaded.
-pub fn build(app: &App, list: &mut DrawList, meshes: usize) {
-    list.clear(meshes);
+/// A body whose bounding sphere spans fewer pixels in radius than this is
+/// drawn with its shape's far mesh.
+const FAR_RADIUS_PIXELS: f32 = 24.0;
+
+/// How far the camera is and how big things look: what picks each body's
+/// mesh.
+#[derive(Clone, Copy, Debug)]
+pub struct View {
+    /// The eye's position.
+    pub eye: Vec3,
+    /// Pixels per unit of size at unit distance (the viewport's height over
+    /// twice the tangent of half the vertical field of view).
+    pub pixels_per_unit: f32,
+}
+
+/// Fills `list` for the app's current state as seen from `view`. The
+/// uploaded meshes are the library's full meshes, then its far meshes.
+pub fn build(app: &App, list: &mut DrawList, view: View) {
+    let shapes = app.library.entries.len();
+    list.clear(2 * shapes);
     let world = app.sim.world();
     floor_instance(app, list);
     let s = &app.settings;
@@ -43,7 +59,10 @@ pub fn build(app: &App, list: &mut DrawList, meshes: usize) {
         } else {
             body_color(body.shape, body.id, body.asleep)
         };
-        list.instances[body.shape].push(Instance::new(model, color));
+        let radius = app.library.entries[body.shape].shape.sphere().radius;
+        let pixels = radius * view.pixels_per_unit / view.eye.distance(body.position).max(1e-3);
+        let mesh = if pixels < FAR_RADIUS_PIXELS { shapes + body.shape } else { body.shape };
+        list.instances[mesh].push(Instance::new(model, color));
         if s.show_spheres
             && let Ok(sphere) = world.world_sphere(body.id)
         {
@@ -174,4 +193,44 @@ fn obb_lines(list: &mut DrawList, obb: &Obb, color: [f32; 4], on_top: bool) {
 fn aabb_lines(list: &mut DrawList, aabb: &Aabb, color: [f32; 4]) {
     let (center, half) = ((aabb.min + aabb.max) * 0.5, (aabb.max - aabb.min) * 0.5);
     box_lines(list, center, Mat3::IDENTITY, half, color, false);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::shapes::ShapeLibrary;
+    use bvol::FitOptions;
+
+    /// The instances drawn with full meshes and with far meshes.
+    fn split(app: &App, eye: Vec3) -> (usize, usize) {
+        let mut list = DrawList::default();
+        build(app, &mut list, View { eye, pixels_per_unit: 800.0 });
+        let shapes = app.library.entries.len();
+        let count = |r: std::ops::Range<usize>| list.instances[r].iter().map(Vec::len).sum();
+        // The floor is the one full-mesh instance that is no body.
+        (count(0..shapes) - 1, count(shapes..2 * shapes))
+    }
+
+    /// Near bodies get their full mesh, far ones their far mesh, each body
+    /// once; the boundary is where its sphere spans FAR_RADIUS_PIXELS.
+    #[test]
+    fn each_body_is_drawn_once_with_the_mesh_its_size_on_screen_calls_for() {
+        let mut app = App::new(ShapeLibrary::load(&[], FitOptions::default()), 3);
+        app.add_bodies(40);
+        let n = app.sim.bodies().len();
+        assert_eq!(split(&app, Vec3::new(0.0, 3000.0, 0.0)), (0, n));
+        let body = &app.sim.bodies()[7];
+        let radius = app.library.entries[body.shape].shape.sphere().radius;
+        let boundary = radius * 800.0 / FAR_RADIUS_PIXELS;
+        let (near, far) = split(&app, body.position + Vec3::X * boundary * 0.9);
+        assert!(near >= 1 && near + far == n, "{near} near, {far} far");
+        // Just past the boundary, alone in space: the same body is far.
+        let mut alone = App::new(ShapeLibrary::load(&[], FitOptions::default()), 3);
+        alone.add_bodies(1);
+        let body = &alone.sim.bodies()[0];
+        let radius = alone.library.entries[body.shape].shape.sphere().radius;
+        let boundary = radius * 800.0 / FAR_RADIUS_PIXELS;
+        assert_eq!(split(&alone, body.position + Vec3::Z * boundary * 0.99), (1, 0));
+        assert_eq!(split(&alone, body.position + Vec3::Z * boundary * 1.01), (0, 1));
+    }
 }

@@ -439,7 +439,9 @@ fn pipeline(
             compilation_options: Default::default(),
             targets: &[Some(wgpu::ColorTargetState {
                 format,
-                blend: Some(wgpu::BlendState::ALPHA_BLENDING),
+                // Bodies are opaque (blending costs a software rasteriser a
+                // read per pixel); overlay lines are see-through.
+                blend: (!triangles).then_some(wgpu::BlendState::ALPHA_BLENDING),
                 write_mask: wgpu::ColorWrites::ALL,
             })],
         }),
