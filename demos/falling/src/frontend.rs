@@ -22,8 +22,15 @@ pub struct Frontend {
 }
 
 impl Frontend {
-    /// A frontend drawing `app`'s shapes into targets of `format`.
-    pub fn new(gpu: &Gpu, format: wgpu::TextureFormat, app: &App) -> Frontend {
+    /// A frontend drawing `app`'s shapes into targets of `format`; targets
+    /// that take copies (`COPY_DST`) get the controls panel from a cache
+    /// ([`crate::render::PanelCache`]).
+    pub fn new(
+        gpu: &Gpu,
+        format: wgpu::TextureFormat,
+        app: &App,
+        targets_take_copies: bool,
+    ) -> Frontend {
         // The full meshes, then the far ones: what overlay::build indexes.
         let entries = &app.library.entries;
         let meshes: Vec<&RenderMesh> =
@@ -31,26 +38,35 @@ impl Frontend {
         let ctx = egui::Context::default();
         ctx.set_visuals(egui::Visuals::dark());
         Frontend {
-            renderer: Renderer::new(gpu, format, &meshes),
+            renderer: Renderer::new(gpu, format, &meshes, targets_take_copies),
             ctx,
             list: DrawList::default(),
             last_view: (glam::Mat4::IDENTITY, [0.0; 4]),
         }
     }
 
-    /// Runs one frame into `target` of `size` pixels: the simulation steps
-    /// it owes, the UI from `input`, the scene and the UI drawn and
-    /// submitted. Returns the frame's figures (frame time up to the submit:
+    /// Redraws the controls panel in the next frame (the frame a
+    /// screenshot keeps shows the figures of its own step).
+    pub fn refresh_panel(&mut self) {
+        self.renderer.refresh_panel();
+    }
+
+    /// Runs one frame into `target`: the simulation steps it owes, the UI
+    /// from `input` (any input redraws the panel), the scene and the UI
+    /// drawn and submitted. Returns the frame's figures (frame time up to the submit:
     /// the caller adds presenting or waiting) and egui's platform output.
     pub fn frame(
         &mut self,
         app: &mut App,
         gpu: &Gpu,
-        target: &wgpu::TextureView,
-        size: [u32; 2],
+        target: &wgpu::Texture,
         input: egui::RawInput,
     ) -> (FrameRecord, egui::PlatformOutput) {
         let start = Instant::now();
+        let size = [target.width(), target.height()];
+        if !input.events.is_empty() {
+            self.renderer.refresh_panel();
+        }
         let mut record = app.advance();
         let mut view = Rect::NOTHING;
         let output = self.ctx.run_ui(input, |ui| view = crate::ui::show(ui, app));
@@ -67,10 +83,12 @@ impl Frontend {
             primitives: self.ctx.tessellate(output.shapes, ppp),
             textures: output.textures_delta,
             pixels_per_point: ppp,
+            // The panel fills the target's left side up to the 3D view.
+            panel_width: (view.left() * ppp).ceil().clamp(0.0, size[0] as f32) as u32,
         };
         let viewport = clamp_viewport(viewport, size);
         self.last_view = (view_proj, viewport);
-        self.renderer.render(gpu, target, size, (&self.list, view_proj, viewport), ui);
+        self.renderer.render(gpu, target, (&self.list, view_proj, viewport), ui);
         record.frame = start.elapsed();
         record.render = record.frame.saturating_sub(record.physics);
         (record, output.platform_output)

@@ -27,7 +27,7 @@ pub fn run(mut app: App, run: HeadlessRun) -> Result<(), String> {
     let gpu = Gpu::new(&instance, None).map_err(|e| e.to_string())?;
     eprintln!("falling: headless on {}", gpu.describe());
     let target = Offscreen::new(&gpu, run.size);
-    let mut frontend = Frontend::new(&gpu, Offscreen::FORMAT, &app);
+    let mut frontend = Frontend::new(&gpu, Offscreen::FORMAT, &app, true);
     let mut log = StatsLog::default();
     let started = Instant::now();
     for frame in 0..run.frames {
@@ -41,7 +41,10 @@ pub fn run(mut app: App, run: HeadlessRun) -> Result<(), String> {
             ..Default::default()
         };
         let start = Instant::now();
-        let (mut record, _) = frontend.frame(&mut app, &gpu, &target.view, run.size, input);
+        if frame + 1 == run.frames {
+            frontend.refresh_panel();
+        }
+        let (mut record, _) = frontend.frame(&mut app, &gpu, &target.texture, input);
         // Wait for the GPU, so a frame's time is the whole of it.
         gpu.device.poll(wgpu::PollType::wait_indefinitely()).map_err(|e| e.to_string())?;
         record.frame = start.elapsed();

@@ -89,8 +89,13 @@ impl WindowState {
         if let Some(format) = caps.formats.iter().find(|f| !f.is_srgb()) {
             config.format = *format;
         }
+        // Copies into the frame let the UI panel be drawn only now and then.
+        let copies = caps.usages.contains(wgpu::TextureUsages::COPY_DST);
+        if copies {
+            config.usage |= wgpu::TextureUsages::COPY_DST;
+        }
         surface.configure(&gpu.device, &config);
-        let frontend = Frontend::new(&gpu, config.format, app);
+        let frontend = Frontend::new(&gpu, config.format, app, copies);
         let egui = egui_winit::State::new(
             frontend.ctx.clone(),
             egui::ViewportId::ROOT,
@@ -123,10 +128,8 @@ impl WindowState {
             other => return Err(format!("the window's surface failed: {other:?}")),
         };
         let start = Instant::now();
-        let view = texture.texture.create_view(&Default::default());
         let input = self.egui.take_egui_input(&self.window);
-        let size = [self.config.width, self.config.height];
-        let (mut record, platform) = self.frontend.frame(app, &self.gpu, &view, size, input);
+        let (mut record, platform) = self.frontend.frame(app, &self.gpu, &texture.texture, input);
         self.egui.handle_platform_output(&self.window, platform);
         self.gpu.queue.present(texture);
         record.frame = start.elapsed();

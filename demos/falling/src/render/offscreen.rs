@@ -11,9 +11,8 @@ const ROW_ALIGN: u32 = wgpu::COPY_BYTES_PER_ROW_ALIGNMENT;
 
 /// An RGBA8 image drawn offscreen.
 pub struct Offscreen {
-    texture: wgpu::Texture,
-    /// Its view, to draw into.
-    pub view: wgpu::TextureView,
+    /// The image, to draw into; it takes copies (the UI panel's).
+    pub texture: wgpu::Texture,
     /// Width and height in pixels.
     pub size: [u32; 2],
 }
@@ -31,11 +30,12 @@ impl Offscreen {
             sample_count: 1,
             dimension: wgpu::TextureDimension::D2,
             format: Self::FORMAT,
-            usage: wgpu::TextureUsages::RENDER_ATTACHMENT | wgpu::TextureUsages::COPY_SRC,
+            usage: wgpu::TextureUsages::RENDER_ATTACHMENT
+                | wgpu::TextureUsages::COPY_SRC
+                | wgpu::TextureUsages::COPY_DST,
             view_formats: &[],
         });
-        let view = texture.create_view(&Default::default());
-        Offscreen { texture, view, size }
+        Offscreen { texture, size }
     }
 
     /// The image's pixels, RGBA, row by row, waiting for the GPU.
