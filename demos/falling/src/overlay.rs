@@ -49,6 +49,7 @@ pub struct View {
 pub fn build(app: &App, list: &mut DrawList, view: View) {
     let shapes = app.library.entries.len();
     list.clear(2 * shapes);
+    list.eye = view.eye;
     let world = app.sim.world();
     floor_instance(app, list);
     let s = &app.settings;

@@ -37,13 +37,15 @@ const FAR_TRIANGLE_FRACTION: f32 = 0.05;
 /// mesh's extent (meshoptimizer's relative error).
 const FAR_MAX_ERROR: f32 = 0.03;
 
-/// Triangles for drawing: counter-clockwise seen from outside, one normal
-/// per vertex.
+/// Triangles for drawing, counter-clockwise seen from outside.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct RenderMesh {
     /// Vertex positions in the body frame.
     pub positions: Vec<Vec3>,
-    /// Unit vertex normals, pointing out of the body.
+    /// Per vertex, its unit outward normal for smooth shading, or zero
+    /// where each triangle's own normal is meant (flat shading, which the
+    /// shader takes from the triangle's plane): flat triangles can then
+    /// share vertices, a third or less of the vertex shading.
     pub normals: Vec<Vec3>,
     /// Three indices into `positions` per triangle.
     pub indices: Vec<u32>,
@@ -270,28 +272,25 @@ fn hull_mass(hull: &ConvexHull) -> (f64, DVec3) {
     if volume > 0.0 { (volume, moment / volume) } else { (0.0, o) }
 }
 
-/// Flat-shaded triangles of the meshes (three vertices of their own per
-/// triangle), each mesh turned outward if its signed volume is negative
-/// (OBJ files do not agree on a winding). Degenerate triangles are left out:
-/// they have no normal and draw nothing.
+/// Flat-shaded triangles of the meshes on their own vertices (zero normals:
+/// the shader shades each triangle by its plane), each mesh turned outward
+/// if its signed volume is negative (OBJ files do not agree on a winding).
+/// Degenerate triangles are left out: they have no normal and draw nothing.
 fn flat_mesh(meshes: &[Mesh]) -> RenderMesh {
     let mut out = RenderMesh::default();
     for m in meshes {
-        let triangles: Vec<[Vec3; 3]> = m
-            .triangles
-            .iter()
-            .filter_map(|t| {
-                let [a, b, c] = t.map(|i| m.positions.get(i as usize).copied());
-                Some([a?, b?, c?])
-            })
-            .collect();
-        let volume: f32 = triangles.iter().map(|[a, b, c]| a.dot(b.cross(*c))).sum();
-        for &[a, b, c] in &triangles {
-            let [a, b, c] = if volume < 0.0 { [a, c, b] } else { [a, b, c] };
-            if let Some(n) = (b - a).cross(c - a).try_normalize() {
-                push_triangle(&mut out, [a, b, c], [n; 3]);
-            }
-        }
+        let corners = |t: &[u32; 3]| -> Option<[Vec3; 3]> {
+            let [a, b, c] = t.map(|i| m.positions.get(i as usize).copied());
+            Some([a?, b?, c?])
+        };
+        let volume: f32 =
+            m.triangles.iter().filter_map(corners).map(|[a, b, c]| a.dot(b.cross(c))).sum();
+        let triangles = m.triangles.iter().filter_map(|t| {
+            let [a, b, c] = corners(t)?;
+            let t = if volume < 0.0 { [t[0], t[2], t[1]] } else { *t };
+            (b - a).cross(c - a).try_normalize().map(|_| t)
+        });
+        push_flat(&mut out, &m.positions, triangles);
     }
     out
 }
@@ -302,16 +301,18 @@ fn flat_hull_mesh(shape: &Shape) -> RenderMesh {
     let mut out = RenderMesh::default();
     for part in shape.parts() {
         if let Part::Hull(part) = part {
-            let v = part.hull.vertices();
-            for [a, b, c] in part.hull.triangles() {
-                let [a, b, c] = [a, b, c].map(|i| v[i as usize]);
-                if let Some(n) = (b - a).cross(c - a).try_normalize() {
-                    push_triangle(&mut out, [a, b, c], [n; 3]);
-                }
-            }
+            push_flat(&mut out, part.hull.vertices(), part.hull.triangles());
         }
     }
     out
+}
+
+/// Appends `positions` with zero (flat) normals and `triangles` on them.
+fn push_flat(out: &mut RenderMesh, positions: &[Vec3], triangles: impl Iterator<Item = [u32; 3]>) {
+    let base = out.positions.len() as u32;
+    out.positions.extend_from_slice(positions);
+    out.normals.resize(out.positions.len(), Vec3::ZERO);
+    out.indices.extend(triangles.flatten().map(|i| base + i));
 }
 
 /// The capsule's hull with the normals of the round capsule (from the
@@ -362,14 +363,6 @@ fn uv_sphere(radius: f32, (around, down): (u32, u32)) -> RenderMesh {
         }
     }
     out
-}
-
-/// Appends one triangle with vertices of its own.
-fn push_triangle(out: &mut RenderMesh, corners: [Vec3; 3], normals: [Vec3; 3]) {
-    let base = out.positions.len() as u32;
-    out.positions.extend(corners);
-    out.normals.extend(normals);
-    out.indices.extend([base, base + 1, base + 2]);
 }
 
 #[cfg(test)]
@@ -457,9 +450,11 @@ mod tests {
         let mesh = &library.entries[4].mesh;
         assert_eq!(mesh.indices.len(), 36);
         assert!(signed_volume(mesh) > 0.0);
+        assert!(mesh.normals.iter().all(|&n| n == Vec3::ZERO), "flat shaded");
         for t in mesh.indices.chunks_exact(3) {
-            let centre = t.iter().map(|&i| mesh.positions[i as usize]).sum::<Vec3>() / 3.0;
-            assert!(mesh.normals[t[0] as usize].dot(centre) > 0.0, "the cube is centred");
+            let [a, b, c] = [t[0], t[1], t[2]].map(|i| mesh.positions[i as usize]);
+            let centre = (a + b + c) / 3.0;
+            assert!((b - a).cross(c - a).dot(centre) > 0.0, "the cube is centred");
         }
         // Side 2 scaled so that its corners are MESH_RADIUS from the centre.
         let half = library.entries[4].shape.obb().half_extents;
@@ -485,7 +480,8 @@ mod tests {
                 assert_eq!(mesh.positions.len(), mesh.normals.len());
                 assert!(!mesh.indices.is_empty() && mesh.indices.len() % 3 == 0);
                 assert!(mesh.indices.iter().all(|&i| (i as usize) < mesh.positions.len()));
-                assert!(mesh.normals.iter().all(|n| (n.length() - 1.0).abs() < 1e-4), "{name}");
+                let unit_or_flat = |n: &Vec3| *n == Vec3::ZERO || (n.length() - 1.0).abs() < 1e-4;
+                assert!(mesh.normals.iter().all(unit_or_flat), "{name}");
                 assert!(signed_volume(mesh) > 0.0, "{name} is wound inward");
                 let (obb, sphere) = (entry.shape.obb(), entry.shape.sphere());
                 for &p in &mesh.positions {
@@ -531,11 +527,12 @@ mod tests {
             for t in m.indices.chunks_exact(3) {
                 let [a, b, c] = [t[0], t[1], t[2]].map(|i| m.positions[i as usize]);
                 let centre = (a + b + c) / 3.0;
-                // Winding and normals agree, and both point out of the convex solid.
+                // Winding and smooth normals agree, and both point out of
+                // the convex solid (zero normals: flat, by the winding).
                 let face = (b - a).cross(c - a);
                 assert!(face.dot(centre) > 0.0, "{}: triangle {t:?} faces in", entry.name);
                 let n = m.normals[t[0] as usize];
-                assert!(n.dot(centre) > 0.0, "{}: normal {n} points in", entry.name);
+                assert!(n == Vec3::ZERO || n.dot(centre) > 0.0, "{}: normal {n}", entry.name);
             }
         }
         let volume = signed_volume(&library.entries[1].mesh);

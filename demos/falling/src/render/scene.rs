@@ -51,12 +51,15 @@ pub struct LineVertex {
 struct Globals {
     view_proj: [[f32; 4]; 4],
     light_dir: [f32; 4],
+    eye: [f32; 4],
 }
 
 /// What one frame draws: instances grouped by mesh, and two sets of lines
-/// (depth-tested, and always on top).
+/// (depth-tested, and always on top), seen from `eye`.
 #[derive(Default)]
 pub struct DrawList {
+    /// Where the eye is (flat shading turns faces towards it).
+    pub eye: Vec3,
     /// Per mesh, its instances (the index is the mesh's in [`SceneRenderer::new`]).
     pub instances: Vec<Vec<Instance>>,
     /// Lines hidden behind bodies, as pairs of ends.
@@ -210,6 +213,7 @@ impl SceneRenderer {
         let g = Globals {
             view_proj: view_proj.to_cols_array_2d(),
             light_dir: [light.x, light.y, light.z, 0.0],
+            eye: list.eye.extend(1.0).into(),
         };
         queue.write_buffer(&self.globals, 0, bytemuck::bytes_of(&g));
         self.batches.clear();
