@@ -21,7 +21,7 @@ pub struct PanelCache {
 
 impl PanelCache {
     /// How often the panel is redrawn when nothing happens.
-    pub const REFRESH: Duration = Duration::from_millis(100);
+    pub const REFRESH: Duration = Duration::from_millis(200);
 
     /// An empty cache for targets of `format`.
     pub fn new(format: wgpu::TextureFormat) -> PanelCache {
