@@ -185,6 +185,13 @@ fn nearest_on_convex<S: Convex>(shape: &S, centre: DVec3) -> Nearest {
     if deepest.1 <= 0.0 {
         return Nearest::Inside { normal: plane.normal, separation: deepest.1 };
     }
+    // The solid lies behind every face plane, so the centre is at least the
+    // deepest plane's distance from it: where its projection on that face
+    // falls inside the face, that point is the nearest (a resting sphere's
+    // usual case), and the other faces need no look.
+    if let Some(point) = projection_inside(shape, deepest.0, centre) {
+        return Nearest::Outside { point, fallback: plane.normal };
+    }
     let mut closest = (centre - plane.normal * deepest.1, f64::INFINITY);
     for f in faces.filter(|&f| shape.plane(f).distance(centre) > 0.0) {
         let p = closest_on_face(shape, f, centre);
@@ -196,25 +203,33 @@ fn nearest_on_convex<S: Convex>(shape: &S, centre: DVec3) -> Nearest {
     Nearest::Outside { point: closest.0, fallback: plane.normal }
 }
 
+/// Face `f`'s edges: each as its start and its vector, counter-clockwise.
+fn face_edges<S: Convex>(shape: &S, f: u32) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
+    let topology = shape.topology();
+    topology.face_loop(f).map(move |h| {
+        let a = shape.vertex(topology.half_edge(h).origin);
+        (a, shape.vertex(topology.head(h)) - a)
+    })
+}
+
+/// The projection of `p` on face `f`'s plane, if it falls inside the face.
+fn projection_inside<S: Convex>(shape: &S, f: u32, p: DVec3) -> Option<DVec3> {
+    let plane = shape.plane(f);
+    let projected = p - plane.normal * plane.distance(p);
+    // Outside an edge's side plane (through it, square to the face, outward
+    // for a counter-clockwise loop) means outside the polygon.
+    let inside = face_edges(shape, f).all(|(a, e)| e.cross(plane.normal).dot(projected - a) <= 0.0);
+    inside.then_some(projected)
+}
+
 /// The point of face `f`'s polygon closest to `p`: its projection on the
 /// plane if that falls inside, else the closest point of its edges.
 fn closest_on_face<S: Convex>(shape: &S, f: u32, p: DVec3) -> DVec3 {
-    let plane = shape.plane(f);
-    let projected = p - plane.normal * plane.distance(p);
-    let topology = shape.topology();
-    let edges = || {
-        topology.face_loop(f).map(|h| {
-            let a = shape.vertex(topology.half_edge(h).origin);
-            (a, shape.vertex(topology.head(h)) - a)
-        })
-    };
-    // Outside an edge's side plane (through it, square to the face, outward
-    // for a counter-clockwise loop) means outside the polygon.
-    if edges().all(|(a, e)| e.cross(plane.normal).dot(projected - a) <= 0.0) {
+    if let Some(projected) = projection_inside(shape, f, p) {
         return projected;
     }
-    let mut closest = (projected, f64::INFINITY);
-    for (a, e) in edges() {
+    let mut closest = (p, f64::INFINITY);
+    for (a, e) in face_edges(shape, f) {
         let len2 = e.length_squared();
         let t = if len2 > 0.0 { ((p - a).dot(e) / len2).clamp(0.0, 1.0) } else { 0.0 };
         let q = a + e * t;
