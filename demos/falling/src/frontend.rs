@@ -53,8 +53,9 @@ impl Frontend {
 
     /// Runs one frame into `target`: the simulation steps it owes, the UI
     /// from `input` (any input redraws the panel), the scene and the UI
-    /// drawn and submitted. Returns the frame's figures (frame time up to the submit:
-    /// the caller adds presenting or waiting) and egui's platform output.
+    /// drawn and submitted. Returns the frame's figures (frame time up to
+    /// the submit: the caller adds presenting or waiting) and egui's
+    /// platform output.
     pub fn frame(
         &mut self,
         app: &mut App,

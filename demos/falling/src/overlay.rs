@@ -220,18 +220,20 @@ mod tests {
         app.add_bodies(40);
         let n = app.sim.bodies().len();
         assert_eq!(split(&app, Vec3::new(0.0, 3000.0, 0.0)), (0, n));
-        let body = &app.sim.bodies()[7];
-        let radius = app.library.entries[body.shape].shape.sphere().radius;
-        let boundary = radius * 800.0 / FAR_RADIUS_PIXELS;
-        let (near, far) = split(&app, body.position + Vec3::X * boundary * 0.9);
+        // Where body `i` is, and how far its sphere spans FAR_RADIUS_PIXELS.
+        let boundary = |app: &App, i: usize| {
+            let body = &app.sim.bodies()[i];
+            let radius = app.library.entries[body.shape].shape.sphere().radius;
+            (body.position, radius * 800.0 / FAR_RADIUS_PIXELS)
+        };
+        let (at, distance) = boundary(&app, 7);
+        let (near, far) = split(&app, at + Vec3::X * distance * 0.9);
         assert!(near >= 1 && near + far == n, "{near} near, {far} far");
         // Just past the boundary, alone in space: the same body is far.
         let mut alone = App::new(ShapeLibrary::load(&[], FitOptions::default()), 3);
         alone.add_bodies(1);
-        let body = &alone.sim.bodies()[0];
-        let radius = alone.library.entries[body.shape].shape.sphere().radius;
-        let boundary = radius * 800.0 / FAR_RADIUS_PIXELS;
-        assert_eq!(split(&alone, body.position + Vec3::Z * boundary * 0.99), (1, 0));
-        assert_eq!(split(&alone, body.position + Vec3::Z * boundary * 1.01), (0, 1));
+        let (at, distance) = boundary(&alone, 0);
+        assert_eq!(split(&alone, at + Vec3::Z * distance * 0.99), (1, 0));
+        assert_eq!(split(&alone, at + Vec3::Z * distance * 1.01), (0, 1));
     }
 }

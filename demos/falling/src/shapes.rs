@@ -146,15 +146,19 @@ fn primitives(fit: FitOptions) -> Result<Vec<ShapeEntry>, ShapeError> {
     shapes
         .into_iter()
         .map(|(name, shape)| {
+            // Only the ball has a coarser mesh: the others have few triangles.
             let (mesh, far_mesh) = match name {
                 "ball" => (
                     uv_sphere(BALL_RADIUS, BALL_SEGMENTS),
                     uv_sphere(BALL_RADIUS, BALL_FAR_SEGMENTS),
                 ),
-                "capsule" => {
-                    (smooth_capsule(&shape, half_height), smooth_capsule(&shape, half_height))
+                _ => {
+                    let mesh = match name {
+                        "capsule" => smooth_capsule(&shape, half_height),
+                        _ => flat_hull_mesh(&shape),
+                    };
+                    (mesh.clone(), mesh)
                 }
-                _ => (flat_hull_mesh(&shape), flat_hull_mesh(&shape)),
             };
             let shape = if fit == FitOptions::default() { shape } else { shape.refit(fit)? };
             let name = name.to_owned();
@@ -201,8 +205,9 @@ fn mesh_entry(path: &Path, fit: FitOptions) -> Result<ShapeEntry, ShapeError> {
 /// edge-collapse simplifier (Garland & Heckbert's quadric error metric),
 /// down to [`FAR_TRIANGLE_FRACTION`] of the triangles or [`FAR_MAX_ERROR`].
 /// Copies of a position are welded first: the teapot's patches meet along
-/// seams of repeated vertices that would otherwise open into cracks. Triangles with an index out of range are left out first
-/// (meshoptimizer would abort on them).
+/// seams of repeated vertices that would otherwise open into cracks.
+/// Triangles with an index out of range are left out first (meshoptimizer
+/// would abort on them).
 fn simplify(mesh: &Mesh) -> Mesh {
     let n = mesh.positions.len();
     let corners: Vec<[f32; 3]> = mesh.positions.iter().map(|p| p.to_array()).collect();

@@ -729,8 +729,9 @@ impl Sim {
         }
     }
 
-    /// Counts how long each awake body has been slow on average, and picks those slow
-    /// for `sleep_time` (or fallen far below the floor) to fall asleep.
+    /// Counts how long each awake body has been slow on average, and picks
+    /// those slow for `sleep_time` (or fallen far below the floor) to fall
+    /// asleep.
     fn update_sleep(&mut self) {
         let c = &self.config;
         self.falling_asleep.clear();
