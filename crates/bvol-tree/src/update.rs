@@ -427,6 +427,15 @@ fn refit_run<B: Bound>(
     found: &mut Refit,
 ) {
     for x in (0..nodes.len()).rev() {
+        if let Some(all) = bounds
+            && let Some(ahead) = x.checked_sub(PREFETCH_AHEAD)
+        {
+            for c in nodes[ahead].child {
+                if let Some(b) = all.get(c.index() as usize).filter(|_| c.is_leaf()) {
+                    prefetch(b);
+                }
+            }
+        }
         let (head, tail) = nodes.split_at_mut(x + 1);
         let node = &mut head[x];
         let child = |side: usize| {
@@ -437,6 +446,28 @@ fn refit_run<B: Bound>(
         let children = [child(0), child(1)];
         refit_node(node, children, bounds, found);
     }
+}
+
+/// How many nodes ahead of the one being refit [`refit_run`] asks for the
+/// user's leaf bounds. Leaf ids follow the user's order, not the tree's, so
+/// those reads are scattered: past the caches (a million leaves), waiting
+/// for each in turn took half the refit.
+const PREFETCH_AHEAD: usize = 16;
+
+/// Asks the processor to start loading `value`'s cache line, without waiting
+/// for it (a hint: no effect on what the program computes).
+#[inline(always)]
+fn prefetch<T>(value: &T) {
+    // SAFETY: SSE is part of every x86_64 target, and a prefetch only
+    // hints: it reads nothing the program sees and cannot fault.
+    #[cfg(target_arch = "x86_64")]
+    unsafe {
+        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
+            (value as *const T).cast::<i8>(),
+        )
+    };
+    #[cfg(not(target_arch = "x86_64"))]
+    let _ = value;
 }
 
 /// Sets one node's child bounds: internal children's from their refit
