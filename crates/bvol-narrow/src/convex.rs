@@ -6,6 +6,7 @@ use std::sync::OnceLock;
 use glam::{DVec3, Vec3};
 
 use crate::Polyhedron;
+use crate::box_sat::BoxNumbering;
 use crate::cluster::{Cap, Cluster};
 use crate::topology::Topology;
 
@@ -116,6 +117,12 @@ pub(crate) trait Convex {
     /// only needs to know the least is that low: a value `<= limit` is then
     /// only an upper bound of the least. `-inf` asks for the least.
     fn support_min(&self, dir: DVec3, start: u32, limit: f64) -> (u32, f64);
+
+    /// Its half extents and feature numbering if it is a box centred on its
+    /// origin, square to its axes: two boxes take the closed-form queries.
+    fn as_box(&self) -> Option<(DVec3, &BoxNumbering)> {
+        None
+    }
 }
 
 /// [`Convex::support_min`] by hill climbing on the vertex graph, to the
@@ -214,6 +221,10 @@ impl Convex for Polyhedron {
         along.fold((0, f64::INFINITY), |m, x| if x.1 < m.1 { x } else { m })
     }
 
+    fn as_box(&self) -> Option<(DVec3, &BoxNumbering)> {
+        self.box_shape.as_ref().map(|(half, numbering)| (*half, numbering))
+    }
+
     fn arc(&self, e: u32) -> Arc {
         self.arcs[e as usize]
     }
@@ -309,6 +320,10 @@ impl Convex for Cuboid {
         let level = |x: f64| if x < 0.0 { 0 } else { 2 };
         let v = self.unit.seeds[level(dir.x) + 3 * level(dir.y) + 9 * level(dir.z)];
         (v, dir.dot(self.vertex(v)))
+    }
+
+    fn as_box(&self) -> Option<(DVec3, &BoxNumbering)> {
+        self.unit.box_shape.as_ref().map(|(_, numbering)| (self.half, numbering))
     }
 }
 

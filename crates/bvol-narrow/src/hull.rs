@@ -3,6 +3,7 @@
 
 use glam::DVec3;
 
+use crate::box_sat::box_queries;
 use crate::convex::Convex;
 use crate::frame::Frame;
 use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
@@ -100,6 +101,22 @@ fn full_query<A: Convex, B: Convex>(
     frame_b: &Frame,
     rel: &Frame,
 ) -> (Feature, Collision) {
+    let slack = PREFER_ABS * a.size().max(b.size());
+    if let (Some(box_a), Some(box_b)) = (a.as_box(), b.as_box()) {
+        let q = box_queries(box_a, box_b, rel);
+        let pair = Pair { a, frame_a, b, frame_b, rel, inv: &frame_b.relative(frame_a) };
+        // Apart: along the axis that separates them most.
+        let choices = [Choice::FaceA(q.face_a), Choice::FaceB(q.face_b)];
+        let apart = choices
+            .into_iter()
+            .chain(q.edge.map(Choice::Edges))
+            .filter(|c| c.separation() > 0.0)
+            .max_by(|x, y| x.separation().total_cmp(&y.separation()));
+        return match apart {
+            Some(choice) => pair.separated(choice),
+            None => pair.decide(q.face_a, q.face_b, q.edge, slack),
+        };
+    }
     // The line between the centres first: it separates most pairs that are apart.
     let centres = centre_axis(a, b, rel, None);
     if let Some(c) = centres.filter(|c| c.gap > 0.0) {
@@ -114,7 +131,6 @@ fn full_query<A: Convex, B: Convex>(
     // preferences pick a feature at most their slack below the greatest;
     // so features below this floor can never be picked, and
     // the queries need not find them (the answer is the same as if they did).
-    let slack = PREFER_ABS * a.size().max(b.size());
     let c = centres.unwrap_or(AxisGap {
         axis: DVec3::Y,
         gap: f64::NEG_INFINITY,
@@ -140,23 +156,7 @@ fn full_query<A: Convex, B: Convex>(
     if let Some(e) = edge.filter(|e| e.separation > 0.0) {
         return pair.separated(Choice::Edges(e));
     }
-    // Touching. The preferred feature gives the contact if its manifold has
-    // points; a preferred face may not be the axis of least penetration, and
-    // then its clipped face can lie wholly above the reference plane. The
-    // least penetration's own feature always touches along its axis.
-    let preferred = match edge {
-        Some(e) if e.separation > deepest_face + slack => Choice::Edges(e),
-        _ if face_b.separation > face_a.separation + slack => Choice::FaceB(face_b),
-        _ => Choice::FaceA(face_a),
-    };
-    let least = match edge {
-        Some(e) if e.separation > deepest_face => Choice::Edges(e),
-        _ if face_b.separation > face_a.separation => Choice::FaceB(face_b),
-        _ => Choice::FaceA(face_a),
-    };
-    pair.touching(preferred)
-        .or_else(|| pair.touching(least))
-        .unwrap_or_else(|| pair.touching_at_support(least))
+    pair.decide(face_a, face_b, edge, slack)
 }
 
 /// A feature whose axis decides the test.
@@ -168,6 +168,16 @@ enum Choice {
     FaceB(FaceQuery),
     /// An edge of each.
     Edges(EdgeQuery),
+}
+
+impl Choice {
+    /// The separation along its axis.
+    fn separation(&self) -> f64 {
+        match self {
+            Choice::FaceA(q) | Choice::FaceB(q) => q.separation,
+            Choice::Edges(e) => e.separation,
+        }
+    }
 }
 
 /// Two shapes placed in the world and seen from each other.
@@ -183,6 +193,35 @@ struct Pair<'a, A, B> {
 }
 
 impl<A: Convex, B: Convex> Pair<'_, A, B> {
+    /// The touching answer from the queries' best features (none of which
+    /// separates the shapes): the preferred feature gives the contact if its
+    /// manifold has points; a preferred face may not be the axis of least
+    /// penetration, and then its clipped face can lie wholly above the
+    /// reference plane. The least penetration's own feature always touches
+    /// along its axis.
+    fn decide(
+        &self,
+        face_a: FaceQuery,
+        face_b: FaceQuery,
+        edge: Option<EdgeQuery>,
+        slack: f64,
+    ) -> (Feature, Collision) {
+        let deepest_face = face_a.separation.max(face_b.separation);
+        let preferred = match edge {
+            Some(e) if e.separation > deepest_face + slack => Choice::Edges(e),
+            _ if face_b.separation > face_a.separation + slack => Choice::FaceB(face_b),
+            _ => Choice::FaceA(face_a),
+        };
+        let least = match edge {
+            Some(e) if e.separation > deepest_face => Choice::Edges(e),
+            _ if face_b.separation > face_a.separation => Choice::FaceB(face_b),
+            _ => Choice::FaceA(face_a),
+        };
+        self.touching(preferred)
+            .or_else(|| self.touching(least))
+            .unwrap_or_else(|| self.touching_at_support(least))
+    }
+
     /// The cache entry of a choice.
     fn feature(&self, choice: Choice) -> Feature {
         match choice {

@@ -47,6 +47,7 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod box_sat;
 mod boxes;
 mod cluster;
 mod collision;

@@ -3,6 +3,8 @@
 //! Box2D's and Bullet's box and hull manifolds), or from the closest points of
 //! two edges (Ericson, Real-Time Collision Detection 5.1.9).
 
+use std::cell::RefCell;
+
 use glam::DVec3;
 
 use crate::collision::MAX_POINTS;
@@ -15,66 +17,12 @@ use crate::frame::Frame;
 /// corners to that would flicker.
 const TOUCH_SLOP: f64 = 1e-9;
 
-/// Points a [`Polygon`] holds before it spills to the heap: a clipped face
-/// has at most as many corners as the incident face plus the reference face,
-/// and hull faces rarely have more than a dozen.
-const INLINE: usize = 32;
-
-/// A polygon's corners, on the stack up to [`INLINE`] of them, then on the heap:
-/// faces of any size clip right, and only the rare huge face allocates.
-struct Polygon {
-    inline: [DVec3; INLINE],
-    len: usize,
-    heap: Vec<DVec3>,
-}
-
-impl Polygon {
-    /// An empty polygon.
-    fn new() -> Polygon {
-        Polygon { inline: [DVec3::ZERO; INLINE], len: 0, heap: Vec::new() }
-    }
-
-    /// Removes every corner, keeping the heap buffer if there is one.
-    fn clear(&mut self) {
-        self.len = 0;
-        self.heap.clear();
-    }
-
-    /// Appends a corner.
-    fn push(&mut self, p: DVec3) {
-        if self.heap.is_empty() && self.len < INLINE {
-            self.inline[self.len] = p;
-        } else {
-            if self.heap.is_empty() {
-                self.heap.extend_from_slice(&self.inline[..self.len]);
-            }
-            self.heap.push(p);
-        }
-        self.len += 1;
-    }
-
-    /// The corners, in order.
-    fn points(&self) -> &[DVec3] {
-        if self.heap.is_empty() { &self.inline[..self.len] } else { &self.heap }
-    }
-
-    /// Keeps only the corners that pass `keep`, in order.
-    fn retain(&mut self, keep: impl Fn(DVec3) -> bool) {
-        if self.heap.is_empty() {
-            let mut kept = 0;
-            for i in 0..self.len {
-                let p = self.inline[i];
-                if keep(p) {
-                    self.inline[kept] = p;
-                    kept += 1;
-                }
-            }
-            self.len = kept;
-        } else {
-            self.heap.retain(|&p| keep(p));
-            self.len = self.heap.len();
-        }
-    }
+thread_local! {
+    /// Two polygons' worth of corners per thread, reused by every face
+    /// contact for its clipping: fresh stack arrays for faces of any size
+    /// cost more to clear than the clipping itself.
+    static POLYGONS: RefCell<(Vec<DVec3>, Vec<DVec3>)> =
+        const { RefCell::new((Vec::new(), Vec::new())) };
 }
 
 /// A contact manifold in the reference shape's space: up to four points,
@@ -117,21 +65,20 @@ pub(crate) fn face_contact<R: Convex, I: Convex>(
 ) -> Manifold {
     let plane = reference.plane(face);
     let slop = TOUCH_SLOP * reference.size().max(incident.size());
-    let mut polygon = Polygon::new();
-    let ti = incident.topology();
-    for h in ti.face_loop(incident_face(incident, rel, plane.normal, support)) {
-        polygon.push(rel.apply(incident.vertex(ti.half_edge(h).origin)));
-    }
-    let mut scratch = Polygon::new();
-    // Swapping the references, not the polygons: each is hundreds of bytes.
-    let (mut clipped, mut out) = (&mut polygon, &mut scratch);
-    for (p, edge) in rim(reference, face) {
-        let side = edge.cross(plane.normal);
-        clip(clipped, Plane { normal: side, offset: side.dot(p) }, out);
-        std::mem::swap(&mut clipped, &mut out);
-    }
-    clipped.retain(|p| plane.distance(p) <= slop);
-    reduce(clipped.points(), &plane)
+    POLYGONS.with_borrow_mut(|(polygon, scratch)| {
+        let ti = incident.topology();
+        polygon.clear();
+        let facing = incident_face(incident, rel, plane.normal, support);
+        let corners = ti.face_loop(facing).map(|h| incident.vertex(ti.half_edge(h).origin));
+        polygon.extend(corners.map(|v| rel.apply(v)));
+        for (p, edge) in rim(reference, face) {
+            let side = edge.cross(plane.normal);
+            clip(polygon, Plane { normal: side, offset: side.dot(p) }, scratch);
+            std::mem::swap(polygon, scratch);
+        }
+        polygon.retain(|&p| plane.distance(p) <= slop);
+        reduce(polygon, &plane)
+    })
 }
 
 /// The one-point manifold at vertex `support` of `incident` (mapped by `rel`)
@@ -199,9 +146,8 @@ fn incident_face<I: Convex>(shape: &I, rel: &Frame, normal: DVec3, v: u32) -> u3
 /// One Sutherland-Hodgman pass: the part of `polygon` on the inner side of
 /// `plane` (`distance <= 0`) into `out`. The side normal need not be unit: the
 /// crossing parameter is a ratio of distances.
-fn clip(polygon: &Polygon, plane: Plane, out: &mut Polygon) {
+fn clip(points: &[DVec3], plane: Plane, out: &mut Vec<DVec3>) {
     out.clear();
-    let points = polygon.points();
     let Some(&last) = points.last() else { return };
     let (mut a, mut da) = (last, plane.distance(last));
     for &b in points {

@@ -4,6 +4,7 @@ use bvol_volumes::{ConvexHull, FitError};
 use glam::{DVec3, Vec3};
 
 use crate::ShapeError;
+use crate::box_sat::BoxNumbering;
 use crate::cluster::{Cap, Cluster, group};
 use crate::convex::{Arc, Cuboid, Plane, SEEDS, seed_direction, unit_cube};
 use crate::topology::Topology;
@@ -46,6 +47,9 @@ pub struct Polyhedron {
     pub(crate) seeds: [u32; SEEDS],
     /// The face most along each of those directions.
     pub(crate) face_seeds: [u32; SEEDS],
+    /// Its half extents and feature numbering when it is a box centred on
+    /// its origin, square to its axes (see [`BoxNumbering::of`]).
+    pub(crate) box_shape: Option<(DVec3, BoxNumbering)>,
 }
 
 impl Polyhedron {
@@ -146,7 +150,7 @@ impl Polyhedron {
             let along = (0u32..).zip(&planes).map(|(f, p)| (f, -dir.dot(p.normal)));
             along.fold((0, f64::INFINITY), first_min).0
         });
-        Polyhedron {
+        let mut polyhedron = Polyhedron {
             vertices,
             points,
             planes,
@@ -158,7 +162,10 @@ impl Polyhedron {
             edge_clusters,
             seeds,
             face_seeds,
-        }
+            box_shape: None,
+        };
+        polyhedron.box_shape = BoxNumbering::of(&polyhedron);
+        polyhedron
     }
 
     /// The vertices, in local space.

@@ -19,7 +19,7 @@ use crate::frame::Frame;
 /// 1e-16 of `|e1| |e2|`, so at 1e-8 its direction is good to 1e-8 radians, and
 /// a skipped pair's axis lies within 1e-8 radians of a tested one: either way
 /// the separation is off by at most about 1e-8 of the shapes' size.
-const PARALLEL_SINE: f64 = 1e-8;
+pub(crate) const PARALLEL_SINE: f64 = 1e-8;
 
 /// The common normal of an edge pair that the walk finds must lie on A's arc
 /// (in its cap, whose cosine may fall short by this much to rounding), else
@@ -364,7 +364,7 @@ pub(crate) fn edge_separation(
 }
 
 #[cfg(test)]
-mod tests {
+pub(crate) mod tests {
     use glam::{DMat3, DQuat, Vec3};
 
     use super::*;
@@ -406,7 +406,7 @@ mod tests {
     }
 
     /// A small deterministic generator (SplitMix64) for the unit tests.
-    fn next(state: &mut u64) -> f64 {
+    pub(crate) fn next(state: &mut u64) -> f64 {
         *state = state.wrapping_add(0x9E37_79B9_7F4A_7C15);
         let mut z = *state;
         z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);

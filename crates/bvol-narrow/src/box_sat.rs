@@ -1,0 +1,356 @@
+//! The separating-axis queries between two boxes in closed form: the 15 axes
+//! of Gottschalk, Lin & Manocha ("OBBTree", SIGGRAPH 1996; Ericson,
+//! Real-Time Collision Detection 4.4.1) — the 3 face normals of each box and
+//! the 9 cross products of their edge directions — each box's extent along
+//! an axis read off its half extents and the relative rotation, with no
+//! search. The answers are the general queries' (`sat.rs`) for the same
+//! boxes: the face of each with the greatest separation and the edge pair
+//! with the greatest, named by the shapes' own face, vertex and edge
+//! numbers, so that the same preferences and manifolds follow.
+//!
+//! Every edge-direction pair of two boxes is a Minkowski face (once each way
+//! along its cross product: each box's edges of one direction have arcs
+//! that cover a whole great circle, and two great circles meet), so the
+//! greatest edge separation is the greatest over the 9 cross products, taken
+//! the way that points from A's centre towards B's.
+
+use glam::DVec3;
+
+use crate::convex::Convex;
+use crate::frame::Frame;
+use crate::sat::{EdgeQuery, FaceQuery, PARALLEL_SINE};
+
+/// A box's features by direction: what the closed-form queries need to name
+/// the face, vertex or edge they pick in the shape's own numbering.
+#[derive(Clone, Debug, PartialEq)]
+pub(crate) struct BoxNumbering {
+    /// The face whose outward normal is `+e_i` (`[i][0]`) or `-e_i` (`[i][1]`).
+    face: [[u32; 2]; 3],
+    /// The vertex at each corner, by corner code: bit `k` set when
+    /// coordinate `k` is positive.
+    vertex: [u32; 8],
+    /// The edge (index into the topology's edge list) between two corners, by
+    /// corner codes; `u32::MAX` for corners that share no edge.
+    edge: [[u32; 8]; 8],
+    /// The same edges' half-edges (those the edge list names).
+    half_edge: [[u32; 8]; 8],
+}
+
+impl BoxNumbering {
+    /// The half extents and numbering of `shape` if it is a box centred on
+    /// its origin with its faces square to the axes, exactly (its corners at
+    /// `±half` on every axis, its face normals the axes): `None` otherwise.
+    pub fn of(shape: &impl Convex) -> Option<(DVec3, BoxNumbering)> {
+        let topology = shape.topology();
+        if topology.vertex_count() != 8 || topology.face_count() != 6 {
+            return None;
+        }
+        let half = shape.vertex(0).abs();
+        let mut numbering = BoxNumbering {
+            face: [[u32::MAX; 2]; 3],
+            vertex: [u32::MAX; 8],
+            edge: [[u32::MAX; 8]; 8],
+            half_edge: [[u32::MAX; 8]; 8],
+        };
+        for f in 0..6 {
+            let n = shape.plane(f).normal;
+            let i = n.abs().max_position();
+            if n.abs() != DVec3::AXES[i] {
+                return None;
+            }
+            numbering.face[i][usize::from(n[i] < 0.0)] = f;
+        }
+        let corner = |p: DVec3| Self::highest(p);
+        for v in 0..8 {
+            let p = shape.vertex(v);
+            if p.abs() != half {
+                return None;
+            }
+            numbering.vertex[corner(p)] = v;
+        }
+        for (e, &h) in (0u32..).zip(&topology.edges) {
+            let (a, b) = (topology.half_edge(h).origin, topology.head(h));
+            let (ca, cb) = (corner(shape.vertex(a)), corner(shape.vertex(b)));
+            (numbering.edge[ca][cb], numbering.edge[cb][ca]) = (e, e);
+            (numbering.half_edge[ca][cb], numbering.half_edge[cb][ca]) = (h, h);
+        }
+        let complete = numbering.face.iter().flatten().all(|&f| f != u32::MAX)
+            && numbering.vertex.iter().all(|&v| v != u32::MAX)
+            && (0..8).all(|c| (0..3).all(|k| numbering.edge[c][c ^ (1 << k)] != u32::MAX));
+        complete.then_some((half, numbering))
+    }
+
+    /// The corner highest along `dir` (on a tie, the positive side).
+    fn highest(dir: DVec3) -> usize {
+        usize::from(dir.x >= 0.0) | usize::from(dir.y >= 0.0) << 1 | usize::from(dir.z >= 0.0) << 2
+    }
+}
+
+/// What the closed-form queries found: the face of A and of B with the
+/// greatest separation, and the edge pair with the greatest (`None` if every
+/// pair of edge directions is parallel).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct BoxQueries {
+    pub face_a: FaceQuery,
+    pub face_b: FaceQuery,
+    pub edge: Option<EdgeQuery>,
+}
+
+/// The queries between box `a` and box `b`, `rel` mapping B's space into
+/// A's (`x -> R x + t`).
+///
+/// Along a unit axis `u` (in A's space), A reaches `sum_k a_k |u_k|` from
+/// its centre and B reaches `sum_k b_k |u . R e_k|` from its own, at `t`:
+/// the gap is `|u . t|` less both reaches. For A's face normal `e_i` that is
+/// `|t_i| - a_i - sum_k b_k |R_ik|`; for B's, the same with the roles
+/// swapped; for edge directions `e_i` and `R e_j`, `u` is their unit cross
+/// product, skipped when its length (their angle's sine) is at most
+/// [`PARALLEL_SINE`], as the general edge query does.
+pub(crate) fn box_queries(
+    (ha, a): (DVec3, &BoxNumbering),
+    (hb, b): (DVec3, &BoxNumbering),
+    rel: &Frame,
+) -> BoxQueries {
+    let (r, t) = (rel.rotation, rel.translation);
+    let rows = r.transpose(); // rows[i] = row i of R: B's axes' i-th components
+    let abs_rows = [rows.x_axis.abs(), rows.y_axis.abs(), rows.z_axis.abs()];
+    let columns = [r.x_axis, r.y_axis, r.z_axis]; // B's axes in A's space
+    // A's faces.
+    let mut face_a = (0, f64::NEG_INFINITY);
+    for i in 0..3 {
+        let gap = t[i].abs() - ha[i] - abs_rows[i].dot(hb);
+        if gap > face_a.1 {
+            face_a = (i, gap);
+        }
+    }
+    // B's faces: A's centre in B's space is `-R^T t`.
+    let centre_a = -(rows * t);
+    let mut face_b = (0, f64::NEG_INFINITY);
+    for (j, column) in columns.iter().enumerate() {
+        let reach_a = column.abs().dot(ha);
+        let gap = centre_a[j].abs() - hb[j] - reach_a;
+        if gap > face_b.1 {
+            face_b = (j, gap);
+        }
+    }
+    // Edge pairs. Along the unnormalised cross product `l` the reaches and
+    // the distance all scale by `|l|`: the gap is `(|l . t| - reaches) / |l|`,
+    // ranked by its signed square so that only the winner takes a root.
+    let mut edge: Option<(usize, usize, DVec3, f64, f64)> = None;
+    for i in 0..3 {
+        for (j, column) in columns.iter().enumerate() {
+            let l = DVec3::AXES[i].cross(*column);
+            let len2 = l.length_squared();
+            if len2 <= PARALLEL_SINE * PARALLEL_SINE {
+                continue;
+            }
+            let l = if l.dot(t) < 0.0 { -l } else { l };
+            let across_b = DVec3::new(l.dot(columns[0]), l.dot(columns[1]), l.dot(columns[2]));
+            let gap = l.dot(t) - ha.dot(l.abs()) - hb.dot(across_b.abs());
+            let rank = gap * gap.abs() / len2;
+            if edge.is_none_or(|e| rank > e.4) {
+                edge = Some((i, j, l, gap, rank));
+            }
+        }
+    }
+    let face =
+        |features: &BoxNumbering, i: usize, along: f64| features.face[i][usize::from(along < 0.0)];
+    // The other box's lowest corner against a face's normal `n` (in its space).
+    let lowest = |features: &BoxNumbering, n: DVec3| features.vertex[BoxNumbering::highest(-n)];
+    let (i, gap) = face_a;
+    let normal_a = DVec3::AXES[i] * if t[i] < 0.0 { -1.0 } else { 1.0 };
+    let face_a =
+        FaceQuery { face: face(a, i, t[i]), separation: gap, support: lowest(b, rows * normal_a) };
+    let (j, gap) = face_b;
+    let normal_b = DVec3::AXES[j] * if centre_a[j] < 0.0 { -1.0 } else { 1.0 };
+    let face_b = FaceQuery {
+        face: face(b, j, centre_a[j]),
+        separation: gap,
+        support: lowest(a, r * normal_b),
+    };
+    let edge = edge.map(|(i, j, l, gap, _)| {
+        let length = l.length();
+        let (u, separation) = (l / length, gap / length);
+        // A's edge along e_i highest along u, B's along its e_j lowest.
+        let top = BoxNumbering::highest(u);
+        let ub = rows * u;
+        let bottom = BoxNumbering::highest(-ub);
+        EdgeQuery {
+            edge_a: a.edge[top & !(1 << i)][top | (1 << i)],
+            half_edge_b: b.half_edge[bottom & !(1 << j)][bottom | (1 << j)],
+            separation,
+            axis: u,
+        }
+    });
+    BoxQueries { face_a, face_b, edge }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{DMat3, DQuat, Vec3};
+
+    use super::*;
+    use crate::Polyhedron;
+    use crate::sat::tests::next;
+
+    /// The greatest of `min over B - max over A` along `axis`, from every
+    /// vertex of both (B's mapped by `rel`).
+    fn vertex_gap(a: &Polyhedron, b: &Polyhedron, rel: &Frame, axis: DVec3) -> f64 {
+        let high_a = a.points.iter().map(|&v| axis.dot(v)).fold(f64::NEG_INFINITY, f64::max);
+        let low_b = b.points.iter().map(|&v| axis.dot(rel.apply(v))).fold(f64::INFINITY, f64::min);
+        low_b - high_a
+    }
+
+    /// The greatest separation over the faces of `reference`, from every
+    /// vertex of `other` (mapped by `rel`).
+    fn brute_faces(reference: &Polyhedron, other: &Polyhedron, rel: &Frame) -> f64 {
+        (0..6)
+            .map(|f| {
+                let plane = reference.plane(f);
+                other
+                    .points
+                    .iter()
+                    .map(|&v| plane.distance(rel.apply(v)))
+                    .fold(f64::INFINITY, f64::min)
+            })
+            .fold(f64::NEG_INFINITY, f64::max)
+    }
+
+    /// The greatest gap over both directions of every edge pair's cross
+    /// product (skipping pairs closer to parallel than the queries do).
+    fn brute_edges(a: &Polyhedron, b: &Polyhedron, rel: &Frame) -> Option<f64> {
+        let direction = |p: &Polyhedron, h: u32| {
+            p.vertex(p.topology.head(h)) - p.vertex(p.topology.half_edge(h).origin)
+        };
+        let mut best: Option<f64> = None;
+        for &ha in &a.topology.edges {
+            for &hb in &b.topology.edges {
+                let cross = direction(a, ha).cross(rel.rotate(direction(b, hb)));
+                let (da, db) = (direction(a, ha).length(), direction(b, hb).length());
+                if cross.length() <= PARALLEL_SINE * da * db {
+                    continue;
+                }
+                let u = cross.normalize();
+                let gap = vertex_gap(a, b, rel, u).max(vertex_gap(a, b, rel, -u));
+                best = Some(best.map_or(gap, |x| x.max(gap)));
+            }
+        }
+        best
+    }
+
+    /// On random boxes, apart and overlapping: the closed-form queries give
+    /// the greatest separations that every vertex of both boxes gives along
+    /// every face normal and edge cross product, and name faces, vertices
+    /// and edges that attain them.
+    #[test]
+    fn closed_form_matches_every_vertex_along_every_axis() {
+        let mut state = 7;
+        for case in 0..2000 {
+            let mut half = || {
+                Vec3::new(0.05, 0.05, 0.05)
+                    + 2.0
+                        * Vec3::new(
+                            next(&mut state) as f32,
+                            next(&mut state) as f32,
+                            next(&mut state) as f32,
+                        )
+            };
+            let (a, b) = (Polyhedron::cuboid(half()).unwrap(), Polyhedron::cuboid(half()).unwrap());
+            let mut q = || next(&mut state) - 0.5;
+            let rotation = DQuat::from_xyzw(q(), q(), q(), q()).normalize();
+            // Every fifth case turned by a quarter turn: parallel edges.
+            let rotation = if case % 5 == 0 {
+                DQuat::from_rotation_z(std::f64::consts::FRAC_PI_2)
+            } else {
+                rotation
+            };
+            let rel = Frame {
+                rotation: DMat3::from_quat(rotation),
+                translation: DVec3::new(q(), q(), q()) * 6.0,
+            };
+            let inv = rel.relative(&Frame::IDENTITY);
+            let got = box_queries(a.as_box().unwrap(), b.as_box().unwrap(), &rel);
+            let tolerance = 1e-12 * (a.size + b.size);
+            let close = |x: f64, y: f64| (x - y).abs() <= tolerance;
+            assert!(
+                close(got.face_a.separation, brute_faces(&a, &b, &rel)),
+                "case {case}: A's faces"
+            );
+            assert!(
+                close(got.face_b.separation, brute_faces(&b, &a, &inv)),
+                "case {case}: B's faces"
+            );
+            // The named face and support point attain it.
+            let plane = a.plane(got.face_a.face);
+            assert!(
+                close(
+                    plane.distance(rel.apply(b.vertex(got.face_a.support))),
+                    got.face_a.separation
+                ),
+                "case {case}"
+            );
+            let plane = b.plane(got.face_b.face);
+            assert!(
+                close(
+                    plane.distance(inv.apply(a.vertex(got.face_b.support))),
+                    got.face_b.separation
+                ),
+                "case {case}"
+            );
+            match (got.edge, brute_edges(&a, &b, &rel)) {
+                (Some(e), Some(brute)) => {
+                    assert!(
+                        close(e.separation, brute),
+                        "case {case}: edges {} vs {brute}",
+                        e.separation
+                    );
+                    // The named edges are both shapes' supports along the axis.
+                    let ha = a.topology.edges[e.edge_a as usize];
+                    let ends_a = [a.topology.half_edge(ha).origin, a.topology.head(ha)];
+                    let ends_b = [
+                        b.topology.half_edge(e.half_edge_b).origin,
+                        b.topology.head(e.half_edge_b),
+                    ];
+                    let high_a =
+                        a.points.iter().map(|&v| e.axis.dot(v)).fold(f64::NEG_INFINITY, f64::max);
+                    let low_b = b
+                        .points
+                        .iter()
+                        .map(|&v| e.axis.dot(rel.apply(v)))
+                        .fold(f64::INFINITY, f64::min);
+                    assert!(
+                        ends_a.iter().all(|&v| close(e.axis.dot(a.vertex(v)), high_a)),
+                        "case {case}"
+                    );
+                    assert!(
+                        ends_b.iter().all(|&v| close(e.axis.dot(rel.apply(b.vertex(v))), low_b)),
+                        "case {case}"
+                    );
+                }
+                (None, None) => {}
+                (got, brute) => panic!("case {case}: {got:?} vs {brute:?}"),
+            }
+        }
+    }
+
+    /// A box's numbering only for a box centred on its origin, square to its
+    /// axes; any other hull takes the general queries.
+    #[test]
+    fn only_axis_boxes_are_numbered() {
+        let corners = |shift: Vec3| -> Vec<Vec3> {
+            (0..8)
+                .map(|i| {
+                    Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32) * 2.0 - 1.0
+                        + shift
+                })
+                .collect()
+        };
+        assert!(Polyhedron::from_points(&corners(Vec3::ZERO)).unwrap().as_box().is_some());
+        assert!(Polyhedron::from_points(&corners(Vec3::X * 0.5)).unwrap().as_box().is_none());
+        let turned: Vec<Vec3> =
+            corners(Vec3::ZERO).iter().map(|&p| glam::Quat::from_rotation_z(0.3) * p).collect();
+        assert!(Polyhedron::from_points(&turned).unwrap().as_box().is_none());
+        let wedge = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z, Vec3::ONE];
+        assert!(Polyhedron::from_points(&wedge).unwrap().as_box().is_none());
+    }
+}
