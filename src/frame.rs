@@ -11,7 +11,7 @@ use glam::Vec3;
 use rayon::prelude::*;
 
 use crate::shape::Part;
-use crate::world::{Bodies, PairState};
+use crate::world::{Bodies, PairState, PairStates};
 use crate::{BodyId, BodyKind, World};
 
 /// What happened to a touching pair.
@@ -186,22 +186,21 @@ impl World {
 
     /// The hull test on each pair, with its warm starts from last frame;
     /// then the events, from the pairs that touch now and those that did.
-    /// Returns how many touch.
+    /// Returns how many touch. `pairs` is sorted, as last frame's states
+    /// are: one merge pass hands each pair its state.
     fn narrow_phase(&mut self, pairs: &[(u32, u32)]) -> usize {
-        let results: Vec<(PairState, Option<Contact>)> = pairs
-            .par_iter()
+        let (mut states, left) = carry_over(std::mem::take(&mut self.pairs), pairs);
+        let contacts: Vec<Option<Contact>> = states
+            .par_iter_mut()
+            .zip(pairs)
             .with_min_len(NARROW_CHUNK)
-            .map(|&(a, b)| {
-                let mut state = self.pairs.get(&(a, b)).cloned().unwrap_or_default();
-                let contact = self.bodies.collide(a, b, &mut state);
-                (state, contact)
-            })
+            .map(|(state, &(a, b))| self.bodies.collide(a, b, state))
             .collect();
         let mut events = std::mem::take(&mut self.orphaned);
-        let mut next = std::collections::HashMap::with_capacity(pairs.len());
+        let mut next = Vec::with_capacity(pairs.len());
         let mut touching = 0;
-        for (&(a, b), (mut state, contact)) in pairs.iter().zip(results) {
-            let was = self.pairs.remove(&(a, b)).is_some_and(|p| p.touching);
+        for ((&(a, b), mut state), contact) in pairs.iter().zip(states).zip(contacts) {
+            let was = state.touching;
             state.touching = contact.is_some();
             touching += usize::from(state.touching);
             let kind = match (was, state.touching) {
@@ -213,7 +212,7 @@ impl World {
             if let Some(kind) = kind {
                 events.push(ContactEvent { kind, a: self.id_of(a), b: self.id_of(b), contact });
             }
-            next.insert((a, b), state);
+            next.push(((a, b), state));
         }
         // Pairs no longer candidates that touched have ended, unless both
         // bodies rest: a pile that falls asleep keeps its contacts, unchanged
@@ -222,24 +221,40 @@ impl World {
         let resting = |(a, b): (u32, u32)| {
             kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
         };
-        for (key, state) in self.pairs.iter().filter(|(k, p)| p.touching && resting(**k)) {
-            next.insert(*key, state.clone());
+        let before = next.len();
+        for (key, state) in left.into_iter().filter(|(_, state)| state.touching) {
+            if resting(key) {
+                next.push((key, state));
+            } else {
+                events.push(ContactEvent::ended(self.id_of(key.0), self.id_of(key.1)));
+            }
         }
-        let mut lost: Vec<(u32, u32)> = self
-            .pairs
-            .iter()
-            .filter(|(k, p)| p.touching && !resting(**k))
-            .map(|(&k, _)| k)
-            .collect();
-        lost.sort_unstable();
-        events.extend(
-            lost.into_iter().map(|(a, b)| ContactEvent::ended(self.id_of(a), self.id_of(b))),
-        );
+        if next.len() > before {
+            // Two sorted runs: the stable sort merges them in one pass.
+            next.sort_by_key(|&(key, _)| key);
+        }
         events.sort_by_key(|e| (e.a.index, e.b.index));
         self.pairs = next;
         self.events = events;
         touching
     }
+}
+
+/// Last frame's pair states (sorted by key) matched with this frame's
+/// sorted `pairs`: each pair's state (a fresh one for a new pair), and the
+/// old pairs that are not among them, in order.
+fn carry_over(old: PairStates, pairs: &[(u32, u32)]) -> (Vec<PairState>, PairStates) {
+    let mut old = old.into_iter().peekable();
+    let mut states = Vec::with_capacity(pairs.len());
+    let mut left = Vec::new();
+    for &key in pairs {
+        while let Some(gone) = old.next_if(|(k, _)| *k < key) {
+            left.push(gone);
+        }
+        states.push(old.next_if(|(k, _)| *k == key).map(|(_, state)| state).unwrap_or_default());
+    }
+    left.extend(old);
+    (states, left)
 }
 
 /// The tree leaf of a body: the overlap of the boxes around its world

@@ -2,7 +2,6 @@
 //! two trees (moving bodies, and resting ones: static and sleeping), and the
 //! per-pair state the frame keeps.
 
-use std::collections::HashMap;
 use std::sync::Arc;
 
 use bvol_narrow::WarmStart;
@@ -42,13 +41,16 @@ pub struct World {
     /// Static and sleeping bodies, by slot: never tested against each other.
     pub(crate) resting: Tree<Aabb>,
     /// State of each pair that reached the narrow phase last frame, by
-    /// `(lower slot, higher slot)`.
-    pub(crate) pairs: HashMap<(u32, u32), PairState>,
+    /// `(lower slot, higher slot)`, sorted.
+    pub(crate) pairs: PairStates,
     /// Pairs that touched and lost a body since the last update.
     pub(crate) orphaned: Vec<ContactEvent>,
     pub(crate) events: Vec<ContactEvent>,
     pub(crate) stats: FrameStats,
 }
+
+/// Pairs' states by `(lower slot, higher slot)`, sorted by it.
+pub(crate) type PairStates = Vec<((u32, u32), PairState)>;
 
 /// What a pair carries from frame to frame.
 #[derive(Clone, Debug, Default)]
@@ -132,13 +134,16 @@ impl World {
     pub fn remove_body(&mut self, id: BodyId) -> Result<(), WorldError> {
         let i = self.slot(id)?;
         self.tree_of(self.bodies.kinds[i]).remove(id.index).ok();
-        let mut gone: Vec<(u32, u32)> =
-            self.pairs.keys().filter(|&&(a, b)| a == id.index || b == id.index).copied().collect();
-        gone.sort_unstable();
-        for key in gone {
-            if self.pairs.remove(&key).is_some_and(|p| p.touching) {
-                self.orphaned.push(ContactEvent::ended(self.id_of(key.0), self.id_of(key.1)));
+        let mut orphaned = Vec::new();
+        self.pairs.retain(|&((a, b), ref state)| {
+            let gone = a == id.index || b == id.index;
+            if gone && state.touching {
+                orphaned.push((a, b));
             }
+            !gone
+        });
+        for (a, b) in orphaned {
+            self.orphaned.push(ContactEvent::ended(self.id_of(a), self.id_of(b)));
         }
         let b = &mut self.bodies;
         b.shapes[i] = None;
