@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
-use bvol_volumes::{Aabb, Obb, Pose, Sphere};
+use bvol_volumes::{Aabb, Obb, Pose, Sphere, prefetch};
 use glam::Vec3;
 use rayon::prelude::*;
 
@@ -82,6 +82,8 @@ impl FrameStats {
 const REFIT_CHUNK: usize = 4096;
 /// Pairs tested per rayon task by the sphere and OBB stages (a few ns a pair).
 const PAIR_CHUNK: usize = 1024;
+/// How many pairs ahead the stages ask for the second body's data.
+const AHEAD: usize = 8;
 /// Pairs tested per rayon task by the narrow phase: a hull pair takes
 /// microseconds, so a thousand-body pile's thousand pairs still split.
 const NARROW_CHUNK: usize = 32;
@@ -105,11 +107,21 @@ impl World {
         stats.tree_candidates = candidates.len();
         let t2 = Instant::now();
         stats.tree_time = t2 - t;
-        let near = filter(&candidates, |a, b| self.bodies.spheres_overlap(a, b));
+        let bodies = &self.bodies;
+        let near = filter(
+            &candidates,
+            // Centres and radii are 16 bytes a body, mostly in cache.
+            |_| {},
+            |a, b| bodies.spheres_overlap(a, b),
+        );
         stats.after_spheres = near.len();
         let t3 = Instant::now();
         stats.spheres_time = t3 - t2;
-        let nearer = filter(&near, |a, b| self.bodies.obbs[a].overlaps(&self.bodies.obbs[b]));
+        let nearer = filter(
+            &near,
+            |b| prefetch(&bodies.obbs[b]),
+            |a, b| bodies.obbs[a].overlaps(&bodies.obbs[b]),
+        );
         stats.after_obbs = nearer.len();
         let t4 = Instant::now();
         stats.obbs_time = t4 - t3;
@@ -190,11 +202,20 @@ impl World {
     /// are: one merge pass hands each pair its state.
     fn narrow_phase(&mut self, pairs: &[(u32, u32)]) -> usize {
         let (mut states, left) = carry_over(std::mem::take(&mut self.pairs), pairs);
+        let bodies = &self.bodies;
         let contacts: Vec<Option<Contact>> = states
             .par_iter_mut()
             .zip(pairs)
+            .enumerate()
             .with_min_len(NARROW_CHUNK)
-            .map(|(state, &(a, b))| self.bodies.collide(a, b, state))
+            .map(|(k, (state, &(a, b)))| {
+                if let Some(&(_, later)) = pairs.get(k + AHEAD) {
+                    let later = later as usize;
+                    prefetch(&bodies.poses[later]);
+                    prefetch(&bodies.shapes[later]);
+                }
+                bodies.collide(a, b, state)
+            })
             .collect();
         let mut events = std::mem::take(&mut self.orphaned);
         let mut next = Vec::with_capacity(pairs.len());
@@ -274,10 +295,26 @@ fn leaf_box(sphere: &Sphere, obb: &Obb) -> Aabb {
 }
 
 /// The pairs for which `keep` holds, in order, tested in parallel chunks.
-fn filter(pairs: &[(u32, u32)], keep: impl Fn(usize, usize) -> bool + Sync) -> Vec<(u32, u32)> {
+/// The pairs are sorted, so their first bodies come in memory order and
+/// their second ones scattered: `ahead` asks for the data `keep` will read of
+/// a second body [`AHEAD`] pairs early (about twice as fast on 100 000
+/// bodies, whose bounds are past the caches).
+fn filter(
+    pairs: &[(u32, u32)],
+    ahead: impl Fn(usize) + Sync,
+    keep: impl Fn(usize, usize) -> bool + Sync,
+) -> Vec<(u32, u32)> {
     pairs
         .par_chunks(PAIR_CHUNK)
-        .flat_map_iter(|chunk| chunk.iter().copied().filter(|&(a, b)| keep(a as usize, b as usize)))
+        .flat_map_iter(|chunk| {
+            let kept = chunk.iter().enumerate().filter(|&(k, &(a, b))| {
+                if let Some(&(_, later)) = chunk.get(k + AHEAD) {
+                    ahead(later as usize);
+                }
+                keep(a as usize, b as usize)
+            });
+            kept.map(|(_, &pair)| pair)
+        })
         .collect()
 }
 

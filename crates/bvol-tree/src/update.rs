@@ -4,6 +4,8 @@
 
 use rayon::prelude::*;
 
+use bvol_volumes::prefetch;
+
 use crate::node::{Node, Ref};
 use crate::tree::{NONE, ROOT, check_bound, check_id};
 use crate::{Bound, Tree, TreeError};
@@ -453,22 +455,6 @@ fn refit_run<B: Bound>(
 /// those reads are scattered: past the caches (a million leaves), waiting
 /// for each in turn took half the refit.
 const PREFETCH_AHEAD: usize = 16;
-
-/// Asks the processor to start loading `value`'s cache line, without waiting
-/// for it (a hint: no effect on what the program computes).
-#[inline(always)]
-fn prefetch<T>(value: &T) {
-    // SAFETY: SSE is part of every x86_64 target, and a prefetch only
-    // hints: it reads nothing the program sees and cannot fault.
-    #[cfg(target_arch = "x86_64")]
-    unsafe {
-        std::arch::x86_64::_mm_prefetch::<{ std::arch::x86_64::_MM_HINT_T0 }>(
-            (value as *const T).cast::<i8>(),
-        )
-    };
-    #[cfg(not(target_arch = "x86_64"))]
-    let _ = value;
-}
 
 /// Sets one node's child bounds: internal children's from their refit
 /// `children`, leaves' from `bounds` (recording moves and jumps).
