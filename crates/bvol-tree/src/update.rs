@@ -115,7 +115,15 @@ impl<B: Bound> Tree<B> {
             frame.rebuilt = self.optimize();
         } else {
             let mut jumped = Vec::new();
-            for &(id, bound) in moved {
+            for (k, &(id, bound)) in moved.iter().enumerate() {
+                // The moved ids may come in any order, and their parents
+                // lie anywhere: ask for a later one's parent early.
+                if let Some(&(later, _)) = moved.get(k + PREFETCH_AHEAD)
+                    && let Some(&p) = self.leaf_parents.get(later as usize)
+                    && let Some(node) = self.nodes.get(p as usize)
+                {
+                    prefetch(node);
+                }
                 let p = self.leaf_parents[id as usize];
                 if p == ROOT {
                     self.root_bound = bound;
@@ -451,9 +459,10 @@ fn refit_run<B: Bound>(
 }
 
 /// How many nodes ahead of the one being refit [`refit_run`] asks for the
-/// user's leaf bounds. Leaf ids follow the user's order, not the tree's, so
-/// those reads are scattered: past the caches (a million leaves), waiting
-/// for each in turn took half the refit.
+/// user's leaf bounds (and [`Tree::update_moved`] for a leaf's parent). Leaf
+/// ids follow the user's order, not the tree's, so those reads are
+/// scattered: past the caches (a million leaves), waiting for each in turn
+/// took half the refit.
 const PREFETCH_AHEAD: usize = 16;
 
 /// Sets one node's child bounds: internal children's from their refit
