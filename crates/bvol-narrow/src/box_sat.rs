@@ -272,31 +272,15 @@ mod tests {
             let got = box_queries(a.as_box().unwrap(), b.as_box().unwrap(), &rel);
             let tolerance = 1e-12 * (a.size + b.size);
             let close = |x: f64, y: f64| (x - y).abs() <= tolerance;
-            assert!(
-                close(got.face_a.separation, brute_faces(&a, &b, &rel)),
-                "case {case}: A's faces"
-            );
-            assert!(
-                close(got.face_b.separation, brute_faces(&b, &a, &inv)),
-                "case {case}: B's faces"
-            );
-            // The named face and support point attain it.
-            let plane = a.plane(got.face_a.face);
-            assert!(
-                close(
-                    plane.distance(rel.apply(b.vertex(got.face_a.support))),
-                    got.face_a.separation
-                ),
-                "case {case}"
-            );
-            let plane = b.plane(got.face_b.face);
-            assert!(
-                close(
-                    plane.distance(inv.apply(a.vertex(got.face_b.support))),
-                    got.face_b.separation
-                ),
-                "case {case}"
-            );
+            for (q, reference, other, map) in
+                [(got.face_a, &a, &b, &rel), (got.face_b, &b, &a, &inv)]
+            {
+                let brute = brute_faces(reference, other, map);
+                assert!(close(q.separation, brute), "case {case}: {q:?} vs {brute}");
+                // The named face and support point attain it.
+                let at = reference.plane(q.face).distance(map.apply(other.vertex(q.support)));
+                assert!(close(at, q.separation), "case {case}: {q:?} vs {at}");
+            }
             match (got.edge, brute_edges(&a, &b, &rel)) {
                 (Some(e), Some(brute)) => {
                     assert!(

@@ -1,6 +1,6 @@
 //! Oriented bounding boxes.
 
-use glam::{DMat3, DQuat, DVec3, Mat3, Vec3};
+use glam::{DMat3, DQuat, DVec3, Mat3, Mat3A, Vec3, Vec3A, Vec3Swizzles};
 
 use crate::pose::ROTATION_ERROR;
 use crate::ray::{Ray, SlabClip, ray_f64};
@@ -169,36 +169,38 @@ impl Obb {
     /// parallel-edge epsilon, in the frame of `self`.
     pub fn overlaps(&self, other: &Obb) -> bool {
         let (a, b) = (self, other);
-        let (ae, be) = (a.half_extents, b.half_extents);
-        let at = a.axes.transpose();
-        let r = at * b.axes; // r.col(j)[i] = a_i . b_j
-        let t = at * (b.center - a.center);
-        let abs_r = Mat3::from_cols(
-            r.x_axis.abs() + PARALLEL_EPSILON,
-            r.y_axis.abs() + PARALLEL_EPSILON,
-            r.z_axis.abs() + PARALLEL_EPSILON,
-        );
-        let abs_rt = abs_r.transpose();
+        let (ae, be) = (Vec3A::from(a.half_extents), Vec3A::from(b.half_extents));
+        let at = Mat3A::from(a.axes).transpose();
+        let r = at * Mat3A::from(b.axes); // r.col(j)[i] = a_i . b_j
+        let t = at * Vec3A::from(b.center - a.center);
+        let eps = Vec3A::splat(PARALLEL_EPSILON);
+        let abs_r =
+            Mat3A::from_cols(r.x_axis.abs() + eps, r.y_axis.abs() + eps, r.z_axis.abs() + eps);
         // Face axes of A: rb = sum_j be_j |r_ij| = row i of abs_r . be.
         if t.abs().cmpgt(ae + abs_r * be).any() {
             return false;
         }
         // Face axes of B: ra = sum_i ae_i |r_ij| = column j of abs_r . ae.
-        let tb = r.transpose() * t;
-        if tb.abs().cmpgt(abs_rt * ae + be).any() {
+        let rows = r.transpose();
+        let abs_rows = abs_r.transpose();
+        if (rows * t).abs().cmpgt(abs_rows * ae + be).any() {
             return false;
         }
-        // Edge axes a_i x b_j.
+        // Edge axes a_i x b_j, the three j of one i at once (lane j; j1 and
+        // j2 the next two round, by rotating the lanes):
+        // ra = ae_i1 |r_i2 j| + ae_i2 |r_i1 j|, rb = be_j1 |r_i j2| + be_j2 |r_i j1|,
+        // d = t_i2 r_i1 j - t_i1 r_i2 j.
+        let (row, abs_row) = (
+            [rows.x_axis, rows.y_axis, rows.z_axis],
+            [abs_rows.x_axis, abs_rows.y_axis, abs_rows.z_axis],
+        );
         for i in 0..3 {
             let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
-            for j in 0..3 {
-                let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
-                let ra = ae[i1] * abs_r.col(j)[i2] + ae[i2] * abs_r.col(j)[i1];
-                let rb = be[j1] * abs_r.col(j2)[i] + be[j2] * abs_r.col(j1)[i];
-                let d = t[i2] * r.col(j)[i1] - t[i1] * r.col(j)[i2];
-                if d.abs() > ra + rb {
-                    return false;
-                }
+            let ra = ae[i1] * abs_row[i2] + ae[i2] * abs_row[i1];
+            let rb = be.yzx() * abs_row[i].zxy() + be.zxy() * abs_row[i].yzx();
+            let d = t[i2] * row[i1] - t[i1] * row[i2];
+            if d.abs().cmpgt(ra + rb).any() {
+                return false;
             }
         }
         true
