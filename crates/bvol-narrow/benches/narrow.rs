@@ -13,11 +13,11 @@ mod common;
 use std::hint::black_box;
 use std::time::Duration;
 
-use bvol_narrow::{Collision, WarmStart, hull_hull};
+use bvol_narrow::{Collision, WarmStart, hull_hull, obb_obb};
 use bvol_volumes::{Obb, Pose};
 use common::reference::{Pair, Place};
 use common::shapes::{self, TestShape};
-use common::{parry_pose, random_rotation, random_unit};
+use common::{parry_pose, random_rotation, random_unit, to_parry};
 use criterion::measurement::WallTime;
 use criterion::{BenchmarkGroup, Criterion, Throughput, criterion_group, criterion_main};
 use glam::{Mat3, Quat, Vec3};
@@ -65,6 +65,53 @@ fn obb_overlaps(c: &mut Criterion) {
     group.throughput(Throughput::Elements(pairs.len() as u64));
     group.bench_function("bvol", |bench| {
         bench.iter(|| black_box(&pairs).iter().filter(|(a, b)| a.overlaps(b)).count())
+    });
+    group.finish();
+}
+
+/// Box-box contacts per second on the same random near pairs as
+/// [`obb_overlaps`]: bvol's `obb_obb` (closed-form queries, then the face
+/// clipping) against parry3d's `contact` on cuboids, verdicts checked equal
+/// first outside the band where parry3d is not exact.
+fn box_contacts(c: &mut Criterion) {
+    let pairs = box_pairs(4096);
+    let cuboid = |o: &Obb| parry3d::shape::Cuboid::new(to_parry(o.half_extents));
+    // Each box's own centre and axes, as a pose.
+    let pose = |o: &Obb| Pose::new(o.center, Quat::from_mat3(&o.axes));
+    let parry = |(a, b): &(Obb, Obb)| {
+        let (pa, pb) = (parry_pose(&pose(a)), parry_pose(&pose(b)));
+        query::contact(&pa, &cuboid(a), &pb, &cuboid(b), 0.0).expect("supported")
+    };
+    let bvol = |(a, b): &(Obb, Obb)| {
+        let (unit_a, unit_b) = (
+            Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, ..*a },
+            Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, ..*b },
+        );
+        obb_obb(&unit_a, &pose(a), &unit_b, &pose(b)).expect("finite")
+    };
+    let mut compared = 0;
+    for p in &pairs {
+        let got = bvol(p);
+        let distance = match got {
+            Collision::Separated { distance, .. } => distance,
+            Collision::Touching(contact) => -contact.depth,
+        };
+        if distance.abs() as f64
+            > NEAR_BAND * p.0.half_extents.length().max(p.1.half_extents.length()) as f64
+        {
+            assert_eq!(got.is_touching(), parry(p).is_some_and(|c| c.dist <= 0.0), "{p:?}");
+            compared += 1;
+        }
+    }
+    println!("box contact pairs: {}, {compared} verdicts compared", pairs.len());
+    let mut group = c.benchmark_group("box_contact");
+    settings(&mut group);
+    group.throughput(Throughput::Elements(pairs.len() as u64));
+    group.bench_function("bvol", |bench| {
+        bench.iter(|| black_box(&pairs).iter().filter(|p| bvol(p).is_touching()).count())
+    });
+    group.bench_function("parry3d", |bench| {
+        bench.iter(|| black_box(&pairs).iter().filter(|p| parry(p).is_some()).count())
     });
     group.finish();
 }
@@ -239,5 +286,5 @@ fn hull_contacts(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, obb_overlaps, hull_contacts);
+criterion_group!(benches, obb_overlaps, box_contacts, hull_contacts);
 criterion_main!(benches);
