@@ -60,17 +60,16 @@ impl BoxNumbering {
             }
             numbering.face[i][usize::from(n[i] < 0.0)] = f;
         }
-        let corner = |p: DVec3| Self::highest(p);
         for v in 0..8 {
             let p = shape.vertex(v);
             if p.abs() != half {
                 return None;
             }
-            numbering.vertex[corner(p)] = v;
+            numbering.vertex[Self::highest(p)] = v;
         }
         for (e, &h) in (0u32..).zip(&topology.edges) {
             let (a, b) = (topology.half_edge(h).origin, topology.head(h));
-            let (ca, cb) = (corner(shape.vertex(a)), corner(shape.vertex(b)));
+            let (ca, cb) = (Self::highest(shape.vertex(a)), Self::highest(shape.vertex(b)));
             (numbering.edge[ca][cb], numbering.edge[cb][ca]) = (e, e);
             (numbering.half_edge[ca][cb], numbering.half_edge[cb][ca]) = (h, h);
         }
@@ -91,8 +90,11 @@ impl BoxNumbering {
 /// pair of edge directions is parallel).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct BoxQueries {
+    /// A's face whose normal separates most, with B's lowest corner under it.
     pub face_a: FaceQuery,
+    /// B's face whose normal separates most, with A's lowest corner under it.
     pub face_b: FaceQuery,
+    /// The edge pair whose common normal separates most.
     pub edge: Option<EdgeQuery>,
 }
 
