@@ -119,7 +119,7 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
 
 /// The edges round face `face` of `shape`, in loop order: each as its start
 /// and its vector to the next corner.
-fn rim<S: Convex>(shape: &S, face: u32) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
+pub(crate) fn rim<S: Convex>(shape: &S, face: u32) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
     let topology = shape.topology();
     topology.face_loop(face).map(move |h| {
         let p = shape.vertex(topology.half_edge(h).origin);

@@ -8,7 +8,7 @@ use glam::DVec3;
 use crate::boxes::check_obb;
 use crate::convex::Convex;
 use crate::frame::Frame;
-use crate::manifold::Manifold;
+use crate::manifold::{Manifold, rim};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
 /// Where a sphere's centre is with respect to a convex shape, in its space.
@@ -203,22 +203,13 @@ fn nearest_on_convex<S: Convex>(shape: &S, centre: DVec3) -> Nearest {
     Nearest::Outside { point: closest.0, fallback: plane.normal }
 }
 
-/// Face `f`'s edges: each as its start and its vector, counter-clockwise.
-fn face_edges<S: Convex>(shape: &S, f: u32) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
-    let topology = shape.topology();
-    topology.face_loop(f).map(move |h| {
-        let a = shape.vertex(topology.half_edge(h).origin);
-        (a, shape.vertex(topology.head(h)) - a)
-    })
-}
-
 /// The projection of `p` on face `f`'s plane, if it falls inside the face.
 fn projection_inside<S: Convex>(shape: &S, f: u32, p: DVec3) -> Option<DVec3> {
     let plane = shape.plane(f);
     let projected = p - plane.normal * plane.distance(p);
     // Outside an edge's side plane (through it, square to the face, outward
     // for a counter-clockwise loop) means outside the polygon.
-    let inside = face_edges(shape, f).all(|(a, e)| e.cross(plane.normal).dot(projected - a) <= 0.0);
+    let inside = rim(shape, f).all(|(a, e)| e.cross(plane.normal).dot(projected - a) <= 0.0);
     inside.then_some(projected)
 }
 
@@ -229,7 +220,7 @@ fn closest_on_face<S: Convex>(shape: &S, f: u32, p: DVec3) -> DVec3 {
         return projected;
     }
     let mut closest = (p, f64::INFINITY);
-    for (a, e) in face_edges(shape, f) {
+    for (a, e) in rim(shape, f) {
         let len2 = e.length_squared();
         let t = if len2 > 0.0 { ((p - a).dot(e) / len2).clamp(0.0, 1.0) } else { 0.0 };
         let q = a + e * t;
