@@ -80,7 +80,6 @@ fn scaled(shape: &Shape) -> Result<Shape, String> {
     Shape::from_meshes(&meshes, FitOptions::default()).map_err(|e| e.to_string())
 }
 
-/// Runs the world, then the tree alone on the same leaf boxes.
 /// What a run measured: each timed frame's stats, the mean milliseconds per
 /// frame of setting the poses (outside `update`), and of the tree alone.
 struct Measured {
@@ -89,6 +88,7 @@ struct Measured {
     tree_ms: f64,
 }
 
+/// Runs the world, then the tree alone on the same leaf boxes.
 fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
     let mut scene = Scene::new(SceneKind::Uniform, args.n, args.seed);
     let mut world = World::new();

@@ -76,19 +76,14 @@ fn obb_overlaps(c: &mut Criterion) {
 fn box_contacts(c: &mut Criterion) {
     let pairs = box_pairs(4096);
     let cuboid = |o: &Obb| parry3d::shape::Cuboid::new(to_parry(o.half_extents));
-    // Each box's own centre and axes, as a pose.
+    // Each box's own centre and axes, as a pose for parry3d's cuboid.
     let pose = |o: &Obb| Pose::new(o.center, Quat::from_mat3(&o.axes));
     let parry = |(a, b): &(Obb, Obb)| {
         let (pa, pb) = (parry_pose(&pose(a)), parry_pose(&pose(b)));
         query::contact(&pa, &cuboid(a), &pb, &cuboid(b), 0.0).expect("supported")
     };
-    let bvol = |(a, b): &(Obb, Obb)| {
-        let (unit_a, unit_b) = (
-            Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, ..*a },
-            Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, ..*b },
-        );
-        obb_obb(&unit_a, &pose(a), &unit_b, &pose(b)).expect("finite")
-    };
+    let bvol =
+        |(a, b): &(Obb, Obb)| obb_obb(a, &Pose::IDENTITY, b, &Pose::IDENTITY).expect("finite");
     let mut compared = 0;
     for p in &pairs {
         let got = bvol(p);
@@ -99,7 +94,7 @@ fn box_contacts(c: &mut Criterion) {
         if distance.abs() as f64
             > NEAR_BAND * p.0.half_extents.length().max(p.1.half_extents.length()) as f64
         {
-            assert_eq!(got.is_touching(), parry(p).is_some_and(|c| c.dist <= 0.0), "{p:?}");
+            assert_eq!(got.is_touching(), parry(p).is_some(), "{p:?}");
             compared += 1;
         }
     }
