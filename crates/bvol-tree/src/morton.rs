@@ -30,8 +30,13 @@ pub(crate) fn build_morton<B: Bound>(leaves: &mut Vec<Atom<B>>, out: &mut [Node<
     // of them 20 times larger, this cut pair searches by a fifth; adding
     // size classes as split candidates to the SAH made them slower.)
     let large_above = median_class(leaves).saturating_add(LARGE_CLASSES);
-    let (mut atoms, small): (Vec<_>, Vec<_>) = leaves.iter().partition(|a| a.class > large_above);
-    *leaves = small;
+    let is_large = |a: &Atom<B>| a.class > large_above;
+    // In place: most scenes have none, and copying every leaf into two new
+    // vectors cost as much as the radix sort (2.5 ms on 100 000 leaves).
+    let mut atoms: Vec<_> = leaves.iter().filter(|a| is_large(a)).copied().collect();
+    if !atoms.is_empty() {
+        leaves.retain(|a| !is_large(a));
+    }
     let codes = sort(leaves);
     let mut clusters = Vec::with_capacity(leaves.len() / (CLUSTER / 2) + 1);
     if !leaves.is_empty() {
@@ -125,9 +130,32 @@ fn sort<B: Bound>(leaves: &mut Vec<Atom<B>>) -> Vec<u32> {
         })
         .collect();
     radix_sort(&mut keyed);
-    let sorted: Vec<Atom<B>> = keyed.iter().map(|&(_, i)| leaves[i as usize]).collect();
-    *leaves = sorted;
+    permute(leaves, &mut keyed);
     keyed.into_iter().map(|(c, _)| c).collect()
+}
+
+/// Reorders `items` in place so that position `p` holds the item that was
+/// at `from[p].1`, following the permutation's cycles (each item moves once,
+/// with no second array of items: for 100 000 leaves a fresh one cost more
+/// in page faults than the sort). Leaves every `from[p].1` spent.
+fn permute<T: Copy>(items: &mut [T], from: &mut [(u32, u32)]) {
+    const DONE: u32 = u32::MAX;
+    for start in 0..items.len() {
+        if from[start].1 == DONE {
+            continue;
+        }
+        let first = items[start];
+        let mut p = start;
+        loop {
+            let src = std::mem::replace(&mut from[p].1, DONE) as usize;
+            if src == start {
+                items[p] = first;
+                break;
+            }
+            items[p] = items[src];
+            p = src;
+        }
+    }
 }
 
 /// Spreads the low 10 bits of `v` to every third bit (bit i to bit 3i).
@@ -179,4 +207,25 @@ fn lbvh<B: Bound>(leaves: &[Atom<B>], codes: &[u32], out: &mut [Node<B>], base: 
     let (rr, rb) = sub(mid..codes.len(), right_out, base + mid as u32);
     head[0] = Node { bounds: [lb, rb], child: [lr, rr] };
     lb.merge(&rb)
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        /// The in-place permutation gives what a gather into a new array gives.
+        #[test]
+        fn permute_matches_a_gather(keys in prop::collection::vec(any::<u32>(), 0..300)) {
+            let mut order: Vec<(u32, u32)> = (0..keys.len() as u32).map(|i| (keys[i as usize], i)).collect();
+            order.sort_by_key(|&(k, i)| (k, i)); // some permutation of the positions
+            let items: Vec<u64> = (0..keys.len() as u64).map(|i| i * 7 + 3).collect();
+            let gathered: Vec<u64> = order.iter().map(|&(_, i)| items[i as usize]).collect();
+            let mut permuted = items.clone();
+            permute(&mut permuted, &mut order);
+            prop_assert_eq!(permuted, gathered);
+        }
+    }
 }
