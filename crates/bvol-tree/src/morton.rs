@@ -113,7 +113,7 @@ fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(usize, usize
 /// Sorts `leaves` by the Morton code of their centres (in the box of the
 /// centres, 10 bits per axis) with a stable LSD radix sort, and returns the
 /// sorted codes.
-fn sort<B: Bound>(leaves: &mut Vec<Atom<B>>) -> Vec<u32> {
+fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     let (lo, hi) = leaves.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), a| {
         (lo.min(a.center), hi.max(a.center))
     });
