@@ -135,23 +135,31 @@ pub(crate) fn box_queries(
             face_b = (j, gap);
         }
     }
-    // Edge pairs. Along the unnormalised cross product `l` the reaches and
-    // the distance all scale by `|l|`: the gap is `(|l . t| - reaches) / |l|`,
-    // ranked by its signed square so that only the winner takes a root.
-    let mut edge: Option<(usize, usize, DVec3, f64, f64)> = None;
+    // Edge pairs. Along the unnormalised cross product `l = e_i x R e_j`
+    // the reaches and the distance all scale by `|l|`: the gap is `(|l . t|
+    // - reaches) / |l|`. Each term is read off R (Gottschalk et al., table
+    // 1; Ericson 4.4.1): `l` has components `-R[i2][j]` at `i1` and
+    // `R[i1][j]` at `i2` (`i1, i2` the axes after `i`), and `l . R e_k` is
+    // 0, `R[i][j2]` and `-R[i][j1]` for `k = j, j1, j2`, R being a rotation.
+    // Gaps are ranked by their signed squares over `|l|^2`, cross-multiplied:
+    // no root or division until the winner.
+    let m = [rows.x_axis, rows.y_axis, rows.z_axis]; // m[i][j] = R[i][j]
+    let mut edge: Option<(usize, usize, f64, f64)> = None; // i, j, gap, |l|^2
     for i in 0..3 {
-        for (j, column) in columns.iter().enumerate() {
-            let l = DVec3::AXES[i].cross(*column);
-            let len2 = l.length_squared();
+        let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
+        for j in 0..3 {
+            let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
+            let (r1, r2) = (m[i1][j], m[i2][j]);
+            let len2 = r1 * r1 + r2 * r2;
             if len2 <= PARALLEL_SINE * PARALLEL_SINE {
                 continue;
             }
-            let l = if l.dot(t) < 0.0 { -l } else { l };
-            let across_b = DVec3::new(l.dot(columns[0]), l.dot(columns[1]), l.dot(columns[2]));
-            let gap = l.dot(t) - ha.dot(l.abs()) - hb.dot(across_b.abs());
-            let rank = gap * gap.abs() / len2;
-            if edge.is_none_or(|e| rank > e.4) {
-                edge = Some((i, j, l, gap, rank));
+            let along = r1 * t[i2] - r2 * t[i1];
+            let reach_a = ha[i1] * r2.abs() + ha[i2] * r1.abs();
+            let reach_b = hb[j1] * abs_rows[i][j2] + hb[j2] * abs_rows[i][j1];
+            let gap = along.abs() - reach_a - reach_b;
+            if edge.is_none_or(|(_, _, g, l)| gap * gap.abs() * l > g * g.abs() * len2) {
+                edge = Some((i, j, gap, len2));
             }
         }
     }
@@ -170,8 +178,10 @@ pub(crate) fn box_queries(
         separation: gap,
         support: lowest(a, r * normal_b),
     };
-    let edge = edge.map(|(i, j, l, gap, _)| {
-        let length = l.length();
+    let edge = edge.map(|(i, j, gap, len2)| {
+        let l = DVec3::AXES[i].cross(columns[j]);
+        let l = if l.dot(t) < 0.0 { -l } else { l };
+        let length = len2.sqrt();
         let (u, separation) = (l / length, gap / length);
         // A's edge along e_i highest along u, B's along its e_j lowest.
         let top = BoxNumbering::highest(u);
