@@ -145,18 +145,17 @@ pub(crate) fn box_queries(
     // no root or division until the winner.
     let m = [rows.x_axis, rows.y_axis, rows.z_axis]; // m[i][j] = R[i][j]
     let mut edge: Option<(usize, usize, f64, f64)> = None; // i, j, gap, |l|^2
-    for i in 0..3 {
+    for (i, abs_row) in abs_rows.iter().enumerate() {
         let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
-        for j in 0..3 {
+        for (j, (r1, r2)) in m[i1].to_array().into_iter().zip(m[i2].to_array()).enumerate() {
             let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
-            let (r1, r2) = (m[i1][j], m[i2][j]);
             let len2 = r1 * r1 + r2 * r2;
             if len2 <= PARALLEL_SINE * PARALLEL_SINE {
                 continue;
             }
             let along = r1 * t[i2] - r2 * t[i1];
             let reach_a = ha[i1] * r2.abs() + ha[i2] * r1.abs();
-            let reach_b = hb[j1] * abs_rows[i][j2] + hb[j2] * abs_rows[i][j1];
+            let reach_b = hb[j1] * abs_row[j2] + hb[j2] * abs_row[j1];
             let gap = along.abs() - reach_a - reach_b;
             if edge.is_none_or(|(_, _, g, l)| gap * gap.abs() * l > g * g.abs() * len2) {
                 edge = Some((i, j, gap, len2));
