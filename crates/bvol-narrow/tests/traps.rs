@@ -886,6 +886,12 @@ fn random_boxes(rng: &mut Xoshiro256PlusPlus) -> (Obb, Pose, Obb, Pose) {
     (a, pa, b, pb)
 }
 
+/// The box `obb` (its half extents, about its origin) placed by `pose`, as
+/// the exact reference sees it.
+fn world_box(obb: &Obb, pose: &Pose) -> WorldHull {
+    world_hull(&corners(obb.half_extents), pose)
+}
+
 /// obb_obb and hull_hull on Polyhedron::cuboid of the same boxes at the same
 /// poses: the same answer (the box test is the hull test on a box made on the
 /// spot). With the boxes' own centre and axes folded into the pose instead,
@@ -920,8 +926,7 @@ fn obb_obb_agrees_with_hull_hull_on_cuboids() {
             &outer(&pb, qb, sb),
         )
         .expect("finite");
-        let (wa, wb) =
-            (world_hull(&corners(a.half_extents), &pa), world_hull(&corners(b.half_extents), &pb));
+        let (wa, wb) = (world_box(&a, &pa), world_box(&b, &pb));
         let truth = brute_force_sat(&wa, &wb);
         if truth.abs() > BAND * wa.size.max(wb.size) {
             let what = format!("case {case} folded");
@@ -962,8 +967,7 @@ fn closed_form_box_queries_agree_with_the_general_ones() {
         let (ga, gb) = (shifted(a.half_extents), shifted(b.half_extents));
         let general =
             hull_hull(&ga, &back(&pa), &gb, &back(&pb), &mut WarmStart::default()).expect("finite");
-        let (wa, wb) =
-            (world_hull(&corners(a.half_extents), &pa), world_hull(&corners(b.half_extents), &pb));
+        let (wa, wb) = (world_box(&a, &pa), world_box(&b, &pb));
         if brute_force_sat(&wa, &wb).abs() <= BAND * wa.size.max(wb.size) {
             continue;
         }
@@ -999,8 +1003,7 @@ fn obb_obb_verdict_agrees_with_obb_overlaps() {
     for case in 0..3000 {
         let (a, pa, b, pb) = random_boxes(&mut rng);
         let hit = obb_obb(&a, &pa, &b, &pb).expect("finite");
-        let (wa, wb) =
-            (world_hull(&corners(a.half_extents), &pa), world_hull(&corners(b.half_extents), &pb));
+        let (wa, wb) = (world_box(&a, &pa), world_box(&b, &pb));
         let truth = check_against_brute(&hit, &wa, &wb, &format!("case {case}"));
         if truth.abs() > BAND * wa.size.max(wb.size) {
             compared += 1;
