@@ -115,7 +115,8 @@ pub(crate) fn box_queries(
 ) -> BoxQueries {
     let (r, t) = (rel.rotation, rel.translation);
     let rows = r.transpose(); // rows[i] = row i of R: B's axes' i-th components
-    let abs_rows = [rows.x_axis.abs(), rows.y_axis.abs(), rows.z_axis.abs()];
+    let m = [rows.x_axis, rows.y_axis, rows.z_axis]; // m[i][j] = R[i][j]
+    let abs_rows = m.map(DVec3::abs);
     let columns = [r.x_axis, r.y_axis, r.z_axis]; // B's axes in A's space
     // A's faces.
     let mut face_a = (0, f64::NEG_INFINITY);
@@ -143,7 +144,6 @@ pub(crate) fn box_queries(
     // 0, `R[i][j2]` and `-R[i][j1]` for `k = j, j1, j2`, R being a rotation.
     // Gaps are ranked by their signed squares over `|l|^2`, cross-multiplied:
     // no root or division until the winner.
-    let m = [rows.x_axis, rows.y_axis, rows.z_axis]; // m[i][j] = R[i][j]
     let mut edge: Option<(usize, usize, f64, f64)> = None; // i, j, gap, |l|^2
     for (i, abs_row) in abs_rows.iter().enumerate() {
         let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
