@@ -6,8 +6,7 @@
 use std::time::{Duration, Instant};
 
 use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
-use bvol_volumes::{Aabb, Obb, Pose, Sphere, prefetch};
-use glam::Vec3;
+use bvol_volumes::{BodyBounds, Pose, WorldBounds, prefetch};
 use rayon::prelude::*;
 
 use crate::shape::Part;
@@ -80,6 +79,10 @@ impl FrameStats {
 
 /// Bodies refit per rayon task: the refit is a few dozen ns a body.
 const REFIT_CHUNK: usize = 4096;
+/// The refit scans every slot when at least one in this many moved.
+const DENSE_REFIT: usize = 8;
+/// Bodies refit at once on SIMD lanes.
+const LANES: usize = 4;
 /// Pairs tested per rayon task by the sphere and OBB stages (a few ns a pair).
 const PAIR_CHUNK: usize = 1024;
 /// How many pairs ahead the stages ask for the second body's data.
@@ -103,6 +106,9 @@ impl World {
         let t = Instant::now();
         stats.bounds_time = t - start;
         self.update_trees(&refit);
+        // The list's buffer serves the next frame's moved bodies.
+        self.bodies.dirty = refit;
+        self.bodies.dirty.clear();
         let candidates = self.candidates();
         stats.tree_candidates = candidates.len();
         let t2 = Instant::now();
@@ -131,39 +137,68 @@ impl World {
         &self.stats
     }
 
-    /// Refits the world sphere and OBB of every live body moved since the
-    /// last update (in parallel); returns their slots and leaf boxes.
-    fn refit_bounds(&mut self) -> Vec<(u32, Aabb)> {
+    /// Refits the world sphere, OBB and leaf box of every live body moved
+    /// since the last update; returns their slots. When many moved, one
+    /// parallel pass over every slot writes them in place, four neighbours
+    /// at a time on SIMD lanes (reading a flag a slot costs less than
+    /// gathering the moved ones by slot); when few did, a loop over those.
+    fn refit_bounds(&mut self) -> Vec<u32> {
         let b = &mut self.bodies;
         let mut dirty = std::mem::take(&mut b.dirty);
-        dirty.retain(|&s| std::mem::replace(&mut b.is_dirty[s as usize], false));
-        dirty.retain(|&s| b.shapes[s as usize].is_some());
-        let fitted: Vec<(Sphere, Obb)> = dirty
-            .par_iter()
-            .with_min_len(REFIT_CHUNK)
-            .map(|&s| {
-                let shape = b.shapes[s as usize].as_ref().expect("live slot");
-                let pose = &b.poses[s as usize];
-                (shape.sphere().transformed(pose), shape.obb().transformed(pose))
-            })
-            .collect();
-        let mut leaves = Vec::with_capacity(dirty.len());
-        for (&s, (sphere, obb)) in dirty.iter().zip(fitted) {
-            let i = s as usize;
-            (b.centers[i], b.radii[i], b.obbs[i]) = (sphere.center, sphere.radius, obb);
-            leaves.push((s, leaf_box(&sphere, &obb)));
+        if dirty.len() * DENSE_REFIT >= b.shapes.len() {
+            let groups = (
+                b.centers.par_chunks_mut(LANES),
+                b.radii.par_chunks_mut(LANES),
+                b.obbs.par_chunks_mut(LANES),
+                b.leaves.par_chunks_mut(LANES),
+                b.is_dirty.par_chunks_mut(LANES),
+                b.shapes.par_chunks(LANES),
+                b.poses.par_chunks(LANES),
+            );
+            groups.into_par_iter().with_min_len(REFIT_CHUNK / LANES).for_each(
+                |(centers, radii, obbs, leaves, flags, shapes, poses)| {
+                    let mut store = |k: usize, w: WorldBounds| {
+                        (centers[k], radii[k]) = (w.sphere.center, w.sphere.radius);
+                        (obbs[k], leaves[k]) = (w.obb, w.aabb);
+                    };
+                    if let ([true, true, true, true], [Some(s0), Some(s1), Some(s2), Some(s3)]) =
+                        (&*flags, shapes)
+                    {
+                        let shapes = [s0, s1, s2, s3].map(|s| s.bounds());
+                        let placed = BodyBounds::at4(shapes, std::array::from_fn(|k| &poses[k]));
+                        placed.into_iter().enumerate().for_each(|(k, w)| store(k, w));
+                    } else {
+                        for (k, (&moved, shape)) in flags.iter().zip(shapes).enumerate() {
+                            if let (true, Some(shape)) = (moved, shape) {
+                                store(k, shape.bounds().at(&poses[k]));
+                            }
+                        }
+                    }
+                    flags.fill(false);
+                },
+            );
+        } else {
+            for &s in &dirty {
+                let i = s as usize;
+                b.is_dirty[i] = false;
+                if let Some(shape) = &b.shapes[i] {
+                    let w = shape.bounds().at(&b.poses[i]);
+                    (b.centers[i], b.radii[i]) = (w.sphere.center, w.sphere.radius);
+                    (b.obbs[i], b.leaves[i]) = (w.obb, w.aabb);
+                }
+            }
         }
-        b.dirty = dirty;
-        b.dirty.clear();
-        leaves
+        dirty.retain(|&s| b.shapes[s as usize].is_some());
+        dirty
     }
 
     /// Moves the refit bodies' leaves, each tree in one call that picks
     /// per-leaf updates or a refit by the fraction moved, and inserts new
     /// ones.
-    fn update_trees(&mut self, refit: &[(u32, Aabb)]) {
+    fn update_trees(&mut self, refit: &[u32]) {
         let (mut moving, mut resting) = (Vec::new(), Vec::new());
-        for &(slot, leaf) in refit {
+        for &slot in refit {
+            let leaf = self.bodies.leaves[slot as usize];
             let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
             let tree = if dynamic { &mut self.moving } else { &mut self.resting };
             if !tree.contains(slot) {
@@ -299,22 +334,6 @@ fn carry_over(old: PairStates, pairs: &[(u32, u32)]) -> (Vec<PairState>, PairSta
     }
     left.extend(old);
     (states, left)
-}
-
-/// The tree leaf of a body: the overlap of the boxes around its world
-/// sphere and its world OBB, both of which hold it. The OBB's box is taken
-/// in f32 with a pad of 64 epsilons of the magnitudes (rounding, and the
-/// moved axes' departure from orthonormal), not by
-/// [`Obb::aabb`]'s exact corners: a leaf is rebuilt for every moved body
-/// every frame, and a box a few ulps larger costs the tree nothing.
-fn leaf_box(sphere: &Sphere, obb: &Obb) -> Aabb {
-    let (a, h, c) = (obb.axes, obb.half_extents, obb.center);
-    let extent = a.x_axis.abs() * h.x + a.y_axis.abs() * h.y + a.z_axis.abs() * h.z;
-    let pad = (extent + c.abs() + Vec3::splat(h.element_sum())) * (64.0 * f32::EPSILON);
-    let (lo, hi) = (c - extent - pad, c + extent + pad);
-    let r = sphere.radius * (1.0 + 2.0 * f32::EPSILON);
-    let (sl, sh) = (sphere.center - r, sphere.center + r);
-    Aabb::new(lo.max(sl - sl.abs() * f32::EPSILON), hi.min(sh + sh.abs() * f32::EPSILON))
 }
 
 /// The pairs for which `keep` holds, in order, tested in parallel chunks.

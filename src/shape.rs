@@ -6,7 +6,7 @@ use std::fmt;
 use std::path::Path;
 
 use bvol_narrow::Polyhedron;
-use bvol_volumes::{ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
+use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
 use glam::{DVec3, Vec3};
 
 use crate::mesh::{Mesh, MeshError, load_obj};
@@ -60,8 +60,7 @@ pub struct HullPart {
 #[derive(Clone, Debug)]
 pub struct Shape {
     parts: Vec<Part>,
-    sphere: Sphere,
-    obb: Obb,
+    bounds: BodyBounds,
 }
 
 /// Why a shape could not be built.
@@ -218,12 +217,18 @@ impl Shape {
 
     /// The bounding sphere, in the shape's frame.
     pub fn sphere(&self) -> Sphere {
-        self.sphere
+        self.bounds.sphere
     }
 
     /// The oriented bounding box, in the shape's frame.
     pub fn obb(&self) -> Obb {
-        self.obb
+        self.bounds.obb
+    }
+
+    /// The sphere and OBB together, as a body's world bounds are made from
+    /// them.
+    pub fn bounds(&self) -> &BodyBounds {
+        &self.bounds
     }
 
     /// The nearest `t` in `[0, max_t]` at which a ray in the shape's frame
@@ -247,7 +252,7 @@ impl Shape {
             _ => Sphere::fit(&points, fit.sphere)?,
         };
         let obb = Obb::fit(&points, fit.obb)?;
-        Ok(Shape { parts, sphere, obb })
+        Ok(Shape { parts, bounds: BodyBounds { sphere, obb } })
     }
 }
 

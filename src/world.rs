@@ -80,6 +80,8 @@ pub(crate) struct Bodies {
     pub(crate) radii: Vec<f32>,
     /// World oriented boxes.
     pub(crate) obbs: Vec<Obb>,
+    /// Tree leaf boxes, from the world sphere and OBB.
+    pub(crate) leaves: Vec<Aabb>,
     /// Free slots, the last freed taken first.
     pub(crate) free: Vec<u32>,
     /// Slots whose pose changed since the last update, each once.
@@ -329,6 +331,7 @@ impl Bodies {
             axes: glam::Mat3::IDENTITY,
             half_extents: Vec3::ZERO,
         });
+        self.leaves.push(Aabb::new(Vec3::ZERO, Vec3::ZERO));
         self.is_dirty.push(false);
     }
 

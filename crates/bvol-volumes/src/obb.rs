@@ -2,7 +2,8 @@
 
 use glam::{DMat3, DQuat, DVec3, Mat3, Mat3A, Vec3, Vec3A, Vec3Swizzles};
 
-use crate::pose::ROTATION_ERROR;
+use crate::lane::{Lane, M3, V3};
+use crate::pose::{ROTATION_ERROR, place_point};
 use crate::ray::{Ray, SlabClip, ray_f64};
 use crate::round::up_safe;
 use crate::{Aabb, FitError, Pose, Sphere};
@@ -134,14 +135,10 @@ impl Obb {
     /// of the box by at most `|e| |h|` along it), so the exact image of the
     /// old box stays inside.
     pub fn transformed(&self, pose: &Pose) -> Obb {
-        let r = pose.rotation_f32();
-        let (center, slip) = pose.apply_f32(&r, self.center);
-        let axes = r * self.axes;
-        let h = self.half_extents;
-        let turn = 4.0 * (ROTATION_ERROR + 3.0 * f32::EPSILON) * h.element_sum();
-        let pad = Vec3::splat(slip + turn);
-        let half_extents = (h + pad).map(f32::next_up);
-        Obb { center, axes, half_extents }
+        let (r, position) = pose.lane();
+        let local = (self.center.into(), self.axes.into(), self.half_extents.into());
+        let (center, axes, half_extents) = place(&r, position, local);
+        Obb { center: center.into(), axes: axes.into(), half_extents: half_extents.into() }
     }
 
     /// A box holding both: centre between them, axes from the halfway rotation of
@@ -230,4 +227,20 @@ impl Obb {
         }
         Some(clip.entry())
     }
+}
+
+/// A box's centre, axes and half lengths moved by rotation `r` (from
+/// [`rotation`](crate::pose::rotation)) and translation `position`: the half
+/// lengths grow by the bound on the centre's rounding and by the rotated
+/// axes' error on the box's reach, then by an ulp.
+#[inline(always)]
+pub(crate) fn place<L: Lane>(
+    r: &M3<L>,
+    position: V3<L>,
+    (center, axes, half): (V3<L>, M3<L>, V3<L>),
+) -> (V3<L>, M3<L>, V3<L>) {
+    let (center, slip) = place_point(r, position, center);
+    let turn = L::splat(4.0 * (ROTATION_ERROR + 3.0 * f32::EPSILON)) * half.sum();
+    let pad = V3::splat(slip + turn);
+    (center, r.mul_mat(&axes), half.add(pad).map(L::next_up))
 }

@@ -1,8 +1,10 @@
 //! Rigid poses: a rotation followed by a translation.
 
-use glam::{DMat3, DVec3, Quat, Vec3};
+use glam::{DMat3, DVec3, Quat, Vec3, Vec4};
 
-/// A bound on the error of each entry of [`Pose::rotation_f32`], in units of
+use crate::lane::{Lane, M3, V3};
+
+/// A bound on the error of each entry of [`rotation`]'s matrix, in units of
 /// f32's epsilon: the normalisation errs by about 2, each entry of the
 /// matrix (sums of three products of two components) by about 4 more, and
 /// the rotation's entries are at most 1. 16 leaves room to spare.
@@ -40,8 +42,21 @@ impl Pose {
     }
 
     /// Whether every component is finite and the rotation is not zero.
+    ///
+    /// ```
+    /// use bvol_volumes::Pose;
+    /// use glam::{Quat, Vec3};
+    /// assert!(Pose::IDENTITY.is_finite());
+    /// assert!(!Pose::new(Vec3::new(0.0, f32::NAN, 0.0), Quat::IDENTITY).is_finite());
+    /// assert!(!Pose::new(Vec3::ZERO, Quat::from_xyzw(0.0, 0.0, f32::INFINITY, 1.0)).is_finite());
+    /// assert!(!Pose::new(Vec3::ZERO, Quat::from_xyzw(0.0, 0.0, 0.0, 0.0)).is_finite());
+    /// ```
+    #[inline]
     pub fn is_finite(&self) -> bool {
-        self.position.is_finite() && self.rotation.is_finite() && self.rotation.length() > 0.0
+        // 0 x is 0 for a finite x and NaN for an infinite or NaN one: one
+        // lane-wise test for all seven (a world checks every pose it is given).
+        let (q, p) = (Vec4::from(self.rotation), self.position.extend(0.0));
+        (q * 0.0 + p * 0.0).cmpeq(Vec4::ZERO).all() && q.length_squared() > 0.0
     }
 
     /// Maps a point from local to world space.
@@ -65,30 +80,49 @@ impl Pose {
         DMat3::from_quat(self.rotation.as_dquat().normalize())
     }
 
-    /// The rotation as an f32 matrix, from the quaternion normalised in f32:
-    /// each entry within [`ROTATION_ERROR`] of the exact rotation's.
-    #[inline]
-    pub(crate) fn rotation_f32(&self) -> glam::Mat3 {
-        glam::Mat3::from_quat(self.rotation.normalize())
-    }
-
-    /// The image of a local point in f32 under rotation `r` (this pose's
-    /// [`rotation_f32`](Self::rotation_f32)), and a bound on its distance
-    /// from the exact image: the rotation's error on the point's components,
-    /// the rounding of the product and of the sum (twice the per-component
-    /// bound covers the Euclidean norm and the rounding of the bound itself).
-    #[inline]
-    pub(crate) fn apply_f32(&self, r: &glam::Mat3, p: Vec3) -> (Vec3, f32) {
-        let image = *r * p + self.position;
-        let eps = f32::EPSILON;
-        let slip = 2.0
-            * ((ROTATION_ERROR + 5.0 * eps) * p.abs().element_sum()
-                + eps * self.position.abs().element_sum());
-        (image, slip)
+    /// This pose on one lane: its rotation (see [`rotation`]) and position.
+    #[inline(always)]
+    pub(crate) fn lane(&self) -> (M3<f32>, V3<f32>) {
+        let q = self.rotation;
+        (rotation([q.x, q.y, q.z, q.w]), self.position.into())
     }
 
     /// The exact image of a local point, in f64.
     pub(crate) fn apply_f64(&self, p: DVec3) -> DVec3 {
         self.rotation_f64() * p + self.position.as_dvec3()
     }
+}
+
+/// The rotation of quaternion `[x, y, z, w]` as an f32 matrix, from the
+/// quaternion normalised in f32 (glam's `Mat3::from_quat` on the normalised
+/// quaternion): each entry within [`ROTATION_ERROR`] of the exact rotation's.
+#[inline(always)]
+pub(crate) fn rotation<L: Lane>([x, y, z, w]: [L; 4]) -> M3<L> {
+    let inv = L::splat(1.0) / (x * x + y * y + z * z + w * w).sqrt();
+    let (x, y, z, w) = (x * inv, y * inv, z * inv, w * inv);
+    let (x2, y2, z2) = (x + x, y + y, z + z);
+    let (xx, xy, xz) = (x * x2, x * y2, x * z2);
+    let (yy, yz, zz) = (y * y2, y * z2, z * z2);
+    let (wx, wy, wz) = (w * x2, w * y2, w * z2);
+    let one = L::splat(1.0);
+    M3 {
+        x_axis: V3 { x: one - (yy + zz), y: xy + wz, z: xz - wy },
+        y_axis: V3 { x: xy - wz, y: one - (xx + zz), z: yz + wx },
+        z_axis: V3 { x: xz + wy, y: yz - wx, z: one - (xx + yy) },
+    }
+}
+
+/// The image of a local point `p` in f32 under rotation `r` (from
+/// [`rotation`]) and translation `position`, and a bound on its distance
+/// from the exact image: the rotation's error on the point's components, the
+/// rounding of the product and of the sum (twice the per-component bound
+/// covers the Euclidean norm and the rounding of the bound itself).
+#[inline(always)]
+pub(crate) fn place_point<L: Lane>(r: &M3<L>, position: V3<L>, p: V3<L>) -> (V3<L>, L) {
+    let image = r.mul_vec(p).add(position);
+    let eps = f32::EPSILON;
+    let slip = L::splat(2.0)
+        * (L::splat(ROTATION_ERROR + 5.0 * eps) * p.abs().sum()
+            + L::splat(eps) * position.abs().sum());
+    (image, slip)
 }

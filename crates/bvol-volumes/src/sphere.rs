@@ -2,6 +2,8 @@
 
 use glam::{DVec3, Vec3};
 
+use crate::lane::{Lane, M3, V3};
+use crate::pose::place_point;
 use crate::ray::{Ray, ray_f64};
 use crate::round::{down, up_safe};
 use crate::{Aabb, Pose};
@@ -64,8 +66,9 @@ impl Sphere {
     /// the rounding of the new centre, so the exact image of the old sphere
     /// stays inside.
     pub fn transformed(&self, pose: &Pose) -> Sphere {
-        let (center, slip) = pose.apply_f32(&pose.rotation_f32(), self.center);
-        Sphere { center, radius: (self.radius + slip).next_up() }
+        let (r, position) = pose.lane();
+        let (center, radius) = place(&r, position, self.center.into(), self.radius);
+        Sphere { center: center.into(), radius }
     }
 
     /// The smallest sphere holding both: the larger one if it holds the other,
@@ -135,4 +138,13 @@ impl Sphere {
         let t = c / q;
         (t <= max_t).then(|| down(t).max(0.0))
     }
+}
+
+/// A sphere's centre and radius moved by rotation `r` (from
+/// [`rotation`](crate::pose::rotation)) and translation `position`: the
+/// radius grows by the bound on the centre's rounding, then by an ulp.
+#[inline(always)]
+pub(crate) fn place<L: Lane>(r: &M3<L>, position: V3<L>, center: V3<L>, radius: L) -> (V3<L>, L) {
+    let (center, slip) = place_point(r, position, center);
+    (center, (radius + slip).next_up())
 }

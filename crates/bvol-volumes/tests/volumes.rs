@@ -3,7 +3,7 @@
 
 mod common;
 
-use bvol_volumes::{Aabb, Kdop, Kdop6, Kdop14, Kdop18, Kdop26, Obb, Pose, Ray, Sphere};
+use bvol_volumes::{Aabb, BodyBounds, Kdop, Kdop6, Kdop14, Kdop18, Kdop26, Obb, Pose, Ray, Sphere};
 use glam::{DVec3, Mat3, Quat, Vec3};
 use proptest::prelude::*;
 use rand::rngs::SmallRng;
@@ -129,6 +129,43 @@ proptest! {
             prop_assert!(in_aabb(&aabb, y), "aabb");
             prop_assert!(in_kdop(&k14, y) && in_kdop(&k18, y), "kdop");
             prop_assert!((y - sphere.center.as_dvec3()).length() <= sphere.radius as f64 * (1.0 + 1e-6), "sphere");
+        }
+    }
+
+    /// A body's world bounds: four bodies on SIMD lanes get exactly what one
+    /// at a time gets, which is each bound's own `transformed`; the leaf box
+    /// holds the moved points and lies within both the world box's exact
+    /// box and the world sphere's box, up to its padding.
+    #[test]
+    fn world_bounds_hold_the_moved_points(seed in any::<u64>(), scale in 1e-3f32..1e3, reach in 0f32..1e5) {
+        let mut rng = SmallRng::seed_from_u64(seed);
+        let shapes: Vec<(Vec<Vec3>, BodyBounds)> = (0..4).map(|_| {
+            let off = Vec3::splat(rng.random_range(-5.0..5.0)) * scale;
+            let p = cloud(&mut rng, 20, scale, off);
+            let axes = Mat3::from_quat(common::random_rotation(&mut rng));
+            let sphere = Sphere::new(off, p.iter().map(|x| x.distance(off)).fold(0.0, f32::max));
+            (p.clone(), BodyBounds { sphere, obb: Obb::from_axes(axes, &p).unwrap() })
+        }).collect();
+        let poses: Vec<Pose> = (0..4).map(|_| random_pose(&mut rng, reach)).collect();
+        let four = BodyBounds::at4(
+            std::array::from_fn(|k| &shapes[k].1),
+            std::array::from_fn(|k| &poses[k]),
+        );
+        for (k, ((points, local), pose)) in shapes.iter().zip(&poses).enumerate() {
+            let world = local.at(pose);
+            prop_assert_eq!(four[k], world);
+            prop_assert_eq!(world.sphere, local.sphere.transformed(pose));
+            prop_assert_eq!(world.obb, local.obb.transformed(pose));
+            for x in points {
+                prop_assert!(in_aabb(&world.aabb, apply(pose, *x)), "{x} outside {:?}", world.aabb);
+            }
+            let (s, o) = (world.sphere, world.obb.aabb());
+            let size = pose.position.abs().max_element() as f64 + 10.0 * scale as f64;
+            let slack = DVec3::splat(1e-5 * size);
+            let (min, max) = (world.aabb.min.as_dvec3(), world.aabb.max.as_dvec3());
+            prop_assert!(min.cmpge(o.min.as_dvec3() - slack).all() && max.cmple(o.max.as_dvec3() + slack).all());
+            let r = DVec3::splat(s.radius as f64);
+            prop_assert!(min.cmpge(s.center.as_dvec3() - r - slack).all() && max.cmple(s.center.as_dvec3() + r + slack).all());
         }
     }
 
