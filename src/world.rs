@@ -166,13 +166,16 @@ impl World {
         if ids.len() != poses.len() {
             return Err(WorldError::LengthMismatch { bodies: ids.len(), poses: poses.len() });
         }
-        for (&id, pose) in ids.iter().zip(poses) {
-            self.slot(id)?;
-            check_pose(id, pose)?;
+        // One pass tells whether all are good; the first bad one is named.
+        if let Some(k) = ids.iter().zip(poses).position(|(&id, p)| !self.live(id) || !p.is_finite())
+        {
+            self.slot(ids[k])?;
+            check_pose(ids[k], &poses[k])?;
         }
+        let b = &mut self.bodies;
         for (&id, &pose) in ids.iter().zip(poses) {
-            self.bodies.poses[id.index as usize] = pose;
-            self.bodies.mark_dirty(id.index);
+            b.poses[id.index as usize] = pose;
+            b.mark_dirty(id.index);
         }
         Ok(())
     }
@@ -281,13 +284,15 @@ impl World {
 
     /// The slot of a live body.
     pub(crate) fn slot(&self, id: BodyId) -> Result<usize, WorldError> {
+        if self.live(id) { Ok(id.index as usize) } else { Err(WorldError::UnknownBody(id)) }
+    }
+
+    /// Whether `id` names a body in this world.
+    #[inline]
+    fn live(&self, id: BodyId) -> bool {
         let i = id.index as usize;
         let b = &self.bodies;
-        if b.shapes.get(i).is_some_and(Option::is_some) && b.generations[i] == id.generation {
-            Ok(i)
-        } else {
-            Err(WorldError::UnknownBody(id))
-        }
+        b.shapes.get(i).is_some_and(Option::is_some) && b.generations[i] == id.generation
     }
 
     /// The handle of the body in `slot` now.

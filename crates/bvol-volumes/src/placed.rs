@@ -3,7 +3,7 @@
 //! or for four at once on SIMD lanes (a body a lane) with the same
 //! arithmetic, so that both give the same bounds to the bit.
 
-use glam::{Mat4, Vec4};
+use glam::{Mat4, Vec3, Vec4};
 
 use crate::lane::{Lane, M3, V3};
 use crate::pose::rotation;
@@ -59,10 +59,8 @@ impl BodyBounds {
     #[inline(always)]
     pub fn at(&self, pose: &Pose) -> WorldBounds {
         let (r, position) = pose.lane();
-        let s = &self.sphere;
-        let o = &self.obb;
-        let local = (o.center.into(), o.axes.into(), o.half_extents.into());
-        let placed = place(&r, position, (s.center.into(), s.radius), local);
+        let (sphere, local) = self.lanes(|x| x);
+        let placed = place(&r, position, sphere, local);
         let ((center, radius), (c, axes, h), (min, max)) = placed;
         WorldBounds {
             sphere: Sphere { center: center.into(), radius },
@@ -78,24 +76,41 @@ impl BodyBounds {
     pub fn at4(bounds: [&BodyBounds; 4], poses: [&Pose; 4]) -> [WorldBounds; 4] {
         let [qx, qy, qz, qw] = transpose(poses.map(|p| Vec4::from(p.rotation)));
         let [px, py, pz, _] = transpose(poses.map(|p| p.position.extend(0.0)));
-        let packed = bounds.map(BodyBounds::packed);
-        let column = |i: usize| transpose([packed[0][i], packed[1][i], packed[2][i], packed[3][i]]);
-        let [sx, sy, sz, radius] = column(0);
-        let [cx, cy, cz, hx] = column(1);
-        let [ax, ay, az, hy] = column(2);
-        let [bx, by, bz, hz] = column(3);
-        let [dx, dy, dz, _] = column(4);
         let v = |x, y, z| V3 { x, y, z };
         let r = rotation([qx, qy, qz, qw]);
-        let axes = M3 { x_axis: v(ax, ay, az), y_axis: v(bx, by, bz), z_axis: v(dx, dy, dz) };
-        let local = (v(cx, cy, cz), axes, v(hx, hy, hz));
-        let placed = place(&r, v(px, py, pz), (v(sx, sy, sz), radius), local);
+        let (sphere, local) = if bounds.iter().all(|b| std::ptr::eq(*b, bounds[0])) {
+            bounds[0].lanes(Vec4::splat)
+        } else {
+            let packed = bounds.map(BodyBounds::packed);
+            let column =
+                |i: usize| transpose([packed[0][i], packed[1][i], packed[2][i], packed[3][i]]);
+            let [sx, sy, sz, radius] = column(0);
+            let [cx, cy, cz, hx] = column(1);
+            let [ax, ay, az, hy] = column(2);
+            let [bx, by, bz, hz] = column(3);
+            let [dx, dy, dz, _] = column(4);
+            let axes = M3 { x_axis: v(ax, ay, az), y_axis: v(bx, by, bz), z_axis: v(dx, dy, dz) };
+            ((v(sx, sy, sz), radius), (v(cx, cy, cz), axes, v(hx, hy, hz)))
+        };
+        let placed = place(&r, v(px, py, pz), sphere, local);
         let ((center, radius), (c, axes, h), (min, max)) = placed;
         std::array::from_fn(|k| WorldBounds {
             sphere: Sphere { center: center.lane(k), radius: radius[k] },
             obb: Obb { center: c.lane(k), axes: axes.lane(k), half_extents: h.lane(k) },
             aabb: Aabb::new(min.lane(k), max.lane(k)),
         })
+    }
+
+    /// The sphere `(centre, radius)` and box `(centre, axes, half lengths)`,
+    /// each number put on lanes by `lane`.
+    #[inline(always)]
+    #[allow(clippy::type_complexity)]
+    fn lanes<L: Lane>(&self, lane: impl Fn(f32) -> L) -> ((V3<L>, L), (V3<L>, M3<L>, V3<L>)) {
+        let v = |p: Vec3| V3 { x: lane(p.x), y: lane(p.y), z: lane(p.z) };
+        let (s, o) = (&self.sphere, &self.obb);
+        let axes =
+            M3 { x_axis: v(o.axes.x_axis), y_axis: v(o.axes.y_axis), z_axis: v(o.axes.z_axis) };
+        ((v(s.center), lane(s.radius)), (v(o.center), axes, v(o.half_extents)))
     }
 
     /// The 19 numbers in five lanes' worth: sphere centre and radius, box

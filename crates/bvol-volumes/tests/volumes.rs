@@ -151,9 +151,13 @@ proptest! {
             std::array::from_fn(|k| &shapes[k].1),
             std::array::from_fn(|k| &poses[k]),
         );
+        // Four bodies of one shape take the lanes another way (the shape's
+        // numbers spread, not transposed): the same bounds again.
+        let alike = BodyBounds::at4([&shapes[0].1; 4], std::array::from_fn(|k| &poses[k]));
         for (k, ((points, local), pose)) in shapes.iter().zip(&poses).enumerate() {
             let world = local.at(pose);
             prop_assert_eq!(four[k], world);
+            prop_assert_eq!(alike[k], shapes[0].1.at(pose));
             prop_assert_eq!(world.sphere, local.sphere.transformed(pose));
             prop_assert_eq!(world.obb, local.obb.transformed(pose));
             for x in points {
