@@ -116,8 +116,7 @@ impl World {
         let bodies = &self.bodies;
         let near = filter(
             &candidates,
-            // Centres and radii are 16 bytes a body, mostly in cache.
-            |_| {},
+            |b| prefetch(&bodies.spheres[b]),
             |a, b| bodies.spheres_overlap(a, b),
         );
         stats.after_spheres = near.len();
@@ -147,8 +146,7 @@ impl World {
         let mut dirty = std::mem::take(&mut b.dirty);
         if dirty.len() * DENSE_REFIT >= b.shapes.len() {
             let groups = (
-                b.centers.par_chunks_mut(LANES),
-                b.radii.par_chunks_mut(LANES),
+                b.spheres.par_chunks_mut(LANES),
                 b.obbs.par_chunks_mut(LANES),
                 b.leaves.par_chunks_mut(LANES),
                 b.is_dirty.par_chunks_mut(LANES),
@@ -156,10 +154,9 @@ impl World {
                 b.poses.par_chunks(LANES),
             );
             groups.into_par_iter().with_min_len(REFIT_CHUNK / LANES).for_each(
-                |(centers, radii, obbs, leaves, flags, shapes, poses)| {
+                |(spheres, obbs, leaves, flags, shapes, poses)| {
                     let mut store = |k: usize, w: WorldBounds| {
-                        (centers[k], radii[k]) = (w.sphere.center, w.sphere.radius);
-                        (obbs[k], leaves[k]) = (w.obb, w.aabb);
+                        (spheres[k], obbs[k], leaves[k]) = (w.sphere, w.obb, w.aabb);
                     };
                     if let ([true, true, true, true], [Some(s0), Some(s1), Some(s2), Some(s3)]) =
                         (&*flags, shapes)
@@ -183,8 +180,7 @@ impl World {
                 b.is_dirty[i] = false;
                 if let Some(shape) = &b.shapes[i] {
                     let w = shape.bounds().at(&b.poses[i]);
-                    (b.centers[i], b.radii[i]) = (w.sphere.center, w.sphere.radius);
-                    (b.obbs[i], b.leaves[i]) = (w.obb, w.aabb);
+                    (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
                 }
             }
         }
@@ -361,13 +357,14 @@ fn filter(
 }
 
 impl Bodies {
-    /// Whether the world spheres of two bodies overlap or touch. In f32 on
-    /// the structure-of-arrays centres and radii, with the sum of radii
+    /// Whether the world spheres of two bodies overlap or touch. In f32,
+    /// with the sum of radii
     /// padded by a few roundings so that no touching pair is lost.
     #[inline]
     fn spheres_overlap(&self, a: usize, b: usize) -> bool {
-        let d = self.centers[a] - self.centers[b];
-        let r = (self.radii[a] + self.radii[b]) * (1.0 + 4.0 * f32::EPSILON);
+        let (a, b) = (&self.spheres[a], &self.spheres[b]);
+        let d = a.center - b.center;
+        let r = (a.radius + b.radius) * (1.0 + 4.0 * f32::EPSILON);
         d.length_squared() <= r * r
     }
 

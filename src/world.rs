@@ -75,9 +75,9 @@ pub(crate) struct Bodies {
     pub(crate) user_data: Vec<u64>,
     pub(crate) layers: Vec<u32>,
     pub(crate) masks: Vec<u32>,
-    /// World bounding spheres: centres and radii apart, for the sphere test.
-    pub(crate) centers: Vec<Vec3>,
-    pub(crate) radii: Vec<f32>,
+    /// World bounding spheres: 16 bytes a body, one load each for the
+    /// sphere test.
+    pub(crate) spheres: Vec<Sphere>,
     /// World oriented boxes.
     pub(crate) obbs: Vec<Obb>,
     /// Tree leaf boxes, from the world sphere and OBB.
@@ -217,7 +217,7 @@ impl World {
     /// A body's bounding sphere in the world, as of the last update.
     pub fn world_sphere(&self, id: BodyId) -> Result<Sphere, WorldError> {
         let i = self.slot(id)?;
-        Ok(Sphere::new(self.bodies.centers[i], self.bodies.radii[i]))
+        Ok(self.bodies.spheres[i])
     }
 
     /// A body's oriented bounding box in the world, as of the last update.
@@ -329,8 +329,7 @@ impl Bodies {
         self.user_data.push(0);
         self.layers.push(0);
         self.masks.push(0);
-        self.centers.push(Vec3::ZERO);
-        self.radii.push(0.0);
+        self.spheres.push(Sphere::default());
         self.obbs.push(Obb {
             center: Vec3::ZERO,
             axes: glam::Mat3::IDENTITY,
