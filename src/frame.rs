@@ -358,8 +358,8 @@ fn filter(
 
 impl Bodies {
     /// Whether the world spheres of two bodies overlap or touch. In f32,
-    /// with the sum of radii
-    /// padded by a few roundings so that no touching pair is lost.
+    /// with the sum of radii padded by a few roundings so that no touching
+    /// pair is lost.
     #[inline]
     fn spheres_overlap(&self, a: usize, b: usize) -> bool {
         let (a, b) = (&self.spheres[a], &self.spheres[b]);

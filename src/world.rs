@@ -330,12 +330,8 @@ impl Bodies {
         self.layers.push(0);
         self.masks.push(0);
         self.spheres.push(Sphere::default());
-        self.obbs.push(Obb {
-            center: Vec3::ZERO,
-            axes: glam::Mat3::IDENTITY,
-            half_extents: Vec3::ZERO,
-        });
-        self.leaves.push(Aabb::new(Vec3::ZERO, Vec3::ZERO));
+        self.obbs.push(Obb::default());
+        self.leaves.push(Aabb::default());
         self.is_dirty.push(false);
     }
 
