@@ -8,7 +8,7 @@ use crate::convex::Convex;
 use crate::frame::Frame;
 use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
 use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, edge_query, face_query};
-use crate::warm::{Feature, WarmStart, retest};
+use crate::warm::{Feature, WarmStart, answers, retest};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
 /// An edge contact is taken over a face contact only if its separation beats
@@ -85,21 +85,27 @@ pub(crate) fn collide<A: Convex, B: Convex>(
 ) -> Collision {
     // B's space into A's.
     let rel = frame_a.relative(frame_b);
-    if let Some((axis, gap)) = retest(warm.feature, a, frame_a, b, frame_b, &rel) {
+    let cached = retest(warm.feature, a, frame_a, b, frame_b, &rel);
+    if let Some((axis, gap)) = cached.filter(|&(_, gap)| answers(a, b, gap)) {
         return Collision::separated(frame_a.rotate(axis), gap);
     }
-    let (feature, collision) = full_query(a, frame_a, b, frame_b, &rel);
+    let known = cached.map_or(f64::NEG_INFINITY, |(_, gap)| gap);
+    let (feature, collision) = full_query(a, frame_a, b, frame_b, &rel, known);
     warm.feature = feature;
     collision
 }
 
-/// The full test, which reads no cache: the deciding feature and the answer.
+/// The full test: the deciding feature and the answer. `known` is the gap
+/// along some axis (the cached one, or `-inf`): a lower bound of the
+/// greatest separation that lets the queries skip more, never changing the
+/// answer.
 fn full_query<A: Convex, B: Convex>(
     a: &A,
     frame_a: &Frame,
     b: &B,
     frame_b: &Frame,
     rel: &Frame,
+    known: f64,
 ) -> (Feature, Collision) {
     let slack = PREFER_ABS * a.size().max(b.size());
     if let (Some(box_a), Some(box_b)) = (a.as_box(), b.as_box()) {
@@ -127,7 +133,7 @@ fn full_query<A: Convex, B: Convex>(
     let inv = &frame_b.relative(frame_a);
     let pair = Pair { a, frame_a, b, frame_b, rel, inv };
     // Touching or close. The greatest separation over the candidate axes is
-    // at least the gap along any axis, the centre line's included; the
+    // at least the gap along any axis, the centre line's and `known`'s included; the
     // preferences pick a feature at most their slack below the greatest;
     // so features below this floor can never be picked, and
     // the queries need not find them (the answer is the same as if they did).
@@ -138,7 +144,7 @@ fn full_query<A: Convex, B: Convex>(
         low_b: rel.apply(b.inner_ball().0),
         supports: (0, 0),
     });
-    let floor = c.gap - 2.0 * slack;
+    let floor = c.gap.max(known) - 2.0 * slack;
     // Each face query starts from the face most facing the other shape, and
     // the centre line's support points are the witnesses of the bounds.
     let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, c.low_b);

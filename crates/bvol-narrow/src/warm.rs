@@ -70,9 +70,12 @@ pub struct WarmStart {
     pub(crate) feature: Feature,
 }
 
-/// The cached axis, if it still separates `a` and `b` (placed by their
-/// frames; `rel` maps B's space into A's) by more than the margin: the unit
-/// axis in A's space, from A to B, and the gap along it.
+/// The cached feature's unit axis in A's space (from A to B) and the exact
+/// gap along it between `a` and `b` (placed by their frames; `rel` maps B's
+/// space into A's), from true support points; `None` if nothing usable is
+/// cached. A gap above [`answers`]'s margin settles the call; any gap is a
+/// lower bound of the greatest separation over all axes, which a touching
+/// pair's full query may start from.
 pub(crate) fn retest<A: Convex, B: Convex>(
     feature: Feature,
     a: &A,
@@ -83,30 +86,34 @@ pub(crate) fn retest<A: Convex, B: Convex>(
 ) -> Option<(DVec3, f64)> {
     let (na, nb) = (a.topology().vertex_count() as u32, b.topology().vertex_count() as u32);
     let (fa, fb) = (a.topology().face_count() as u32, b.topology().face_count() as u32);
-    // Only a gap above the margin answers: the searches may stop below it.
-    let margin = MARGIN * a.size().max(b.size());
-    let (axis, gap) = match feature {
-        Feature::None => return None,
+    let exact = f64::NEG_INFINITY;
+    match feature {
+        Feature::None => None,
         Feature::Centres { support_a, support_b } if support_a < na && support_b < nb => {
-            centre_axis(a, b, rel, Some((support_a, support_b))).map(|g| (g.axis, g.gap))?
+            centre_axis(a, b, rel, Some((support_a, support_b))).map(|g| (g.axis, g.gap))
         }
         Feature::FaceA { face, support } if face < fa && support < nb => {
-            let q = face_separation(a, b, rel, face, support, margin);
-            (a.plane(face).normal, q.separation)
+            let q = face_separation(a, b, rel, face, support, exact);
+            Some((a.plane(face).normal, q.separation))
         }
         Feature::FaceB { face, support } if face < fb && support < na => {
-            let q = face_separation(b, a, &frame_b.relative(frame_a), face, support, margin);
-            (-rel.rotate(b.plane(face).normal), q.separation)
+            let q = face_separation(b, a, &frame_b.relative(frame_a), face, support, exact);
+            Some((-rel.rotate(b.plane(face).normal), q.separation))
         }
         Feature::Edges { edge_a, half_edge_b }
             if (edge_a as usize) < a.topology().edges.len()
                 && (half_edge_b as usize) < b.topology().half_edges.len() =>
         {
-            edge_gap(a, b, rel, edge_a, half_edge_b)?
+            edge_gap(a, b, rel, edge_a, half_edge_b)
         }
-        _ => return None,
-    };
-    (gap > margin).then_some((axis, gap))
+        _ => None,
+    }
+}
+
+/// Whether a cached axis's gap separates `a` and `b` by enough to answer
+/// the call alone (see [`MARGIN`]).
+pub(crate) fn answers<A: Convex, B: Convex>(a: &A, b: &B, gap: f64) -> bool {
+    gap > MARGIN * a.size().max(b.size())
 }
 
 /// The gap between `a` and `b` along the common normal of A's edge `edge_a`
