@@ -86,26 +86,25 @@ pub(crate) fn collide<A: Convex, B: Convex>(
     // B's space into A's.
     let rel = frame_a.relative(frame_b);
     let cached = retest(warm.feature, a, frame_a, b, frame_b, &rel);
-    if let Some((axis, gap)) = cached.filter(|&(_, gap)| answers(a, b, gap)) {
-        return Collision::separated(frame_a.rotate(axis), gap);
+    if let Some(c) = cached.filter(|c| answers(a, b, c.gap)) {
+        return Collision::separated(frame_a.rotate(c.axis), c.gap);
     }
-    let known = cached.map_or(f64::NEG_INFINITY, |(_, gap)| gap);
-    let (feature, collision) = full_query(a, frame_a, b, frame_b, &rel, known);
+    let (feature, collision) = full_query(a, frame_a, b, frame_b, &rel, cached);
     warm.feature = feature;
     collision
 }
 
-/// The full test: the deciding feature and the answer. `known` is the gap
-/// along some axis (the cached one, or `-inf`): a lower bound of the
-/// greatest separation that lets the queries skip more, never changing the
-/// answer.
+/// The full test: the deciding feature and the answer. `cached` is the gap
+/// along the cached axis, if any: a lower bound of the greatest separation,
+/// and witnesses near the contact, that let the queries skip more, never
+/// changing the answer.
 fn full_query<A: Convex, B: Convex>(
     a: &A,
     frame_a: &Frame,
     b: &B,
     frame_b: &Frame,
     rel: &Frame,
-    known: f64,
+    cached: Option<AxisGap>,
 ) -> (Feature, Collision) {
     let slack = PREFER_ABS * a.size().max(b.size());
     if let (Some(box_a), Some(box_b)) = (a.as_box(), b.as_box()) {
@@ -133,10 +132,11 @@ fn full_query<A: Convex, B: Convex>(
     let inv = &frame_b.relative(frame_a);
     let pair = Pair { a, frame_a, b, frame_b, rel, inv };
     // Touching or close. The greatest separation over the candidate axes is
-    // at least the gap along any axis, the centre line's and `known`'s included; the
-    // preferences pick a feature at most their slack below the greatest;
-    // so features below this floor can never be picked, and
-    // the queries need not find them (the answer is the same as if they did).
+    // at least the gap along any axis, the centre line's and the cached
+    // one's included; the preferences pick a feature at most their slack
+    // below the greatest; so features below this floor can never be picked,
+    // and the queries need not find them (the answer is the same as if they
+    // did).
     let c = centres.unwrap_or(AxisGap {
         axis: DVec3::Y,
         gap: f64::NEG_INFINITY,
@@ -144,21 +144,23 @@ fn full_query<A: Convex, B: Convex>(
         low_b: rel.apply(b.inner_ball().0),
         supports: (0, 0),
     });
-    let floor = c.gap.max(known) - 2.0 * slack;
-    // Each face query starts from the face most facing the other shape, and
-    // the centre line's support points are the witnesses of the bounds.
-    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, c.low_b);
+    let floor = c.gap.max(cached.map_or(f64::NEG_INFINITY, |k| k.gap)) - 2.0 * slack;
+    // Each face query starts from the face most facing the other shape; the
+    // support points along the cached axis, near last call's contact, or
+    // else along the centre line, are the witnesses of the bounds.
+    let w = cached.unwrap_or(c);
+    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b);
     if face_a.separation > 0.0 {
         return pair.separated(Choice::FaceA(face_a));
     }
     let first_b = b.face_seed(-rel.unrotate(c.axis));
     let floor_b = floor.max(face_a.separation);
-    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(c.high_a));
+    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(w.high_a));
     if face_b.separation > 0.0 {
         return pair.separated(Choice::FaceB(face_b));
     }
     let deepest_face = face_a.separation.max(face_b.separation);
-    let edge = edge_query(a, b, rel, floor.max(deepest_face), c.low_b);
+    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b);
     if let Some(e) = edge.filter(|e| e.separation > 0.0) {
         return pair.separated(Choice::Edges(e));
     }

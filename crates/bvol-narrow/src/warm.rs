@@ -1,11 +1,10 @@
 //! The per-pair cache of the feature that decided the last call, re-tested
 //! first on the next: a pair that was apart along an axis mostly still is.
 
-use glam::DVec3;
-
 use crate::convex::Convex;
 use crate::frame::Frame;
-use crate::sat::{axis_gap, centre_axis, edge_separation, face_separation};
+use crate::sat::{AxisGap, axis_gap, centre_axis, edge_separation, face_separation};
+use crate::topology::Topology;
 
 /// A cached axis must separate the shapes by more than this, relative to their
 /// size, for the call to answer from it alone. The full query can miss a
@@ -70,12 +69,13 @@ pub struct WarmStart {
     pub(crate) feature: Feature,
 }
 
-/// The cached feature's unit axis in A's space (from A to B) and the exact
-/// gap along it between `a` and `b` (placed by their frames; `rel` maps B's
-/// space into A's), from true support points; `None` if nothing usable is
-/// cached. A gap above [`answers`]'s margin settles the call; any gap is a
-/// lower bound of the greatest separation over all axes, which a touching
-/// pair's full query may start from.
+/// The cached feature's axis and the exact gap along it between `a` and `b`
+/// (placed by their frames; `rel` maps B's space into A's), from true
+/// support points, with a point of each shape at the gap's ends; `None` if
+/// nothing usable is cached. A gap above [`answers`]'s margin settles the
+/// call; any gap is a lower bound of the greatest separation over all axes,
+/// and its points are witnesses near the contact, which a touching pair's
+/// full query may start from.
 pub(crate) fn retest<A: Convex, B: Convex>(
     feature: Feature,
     a: &A,
@@ -83,26 +83,43 @@ pub(crate) fn retest<A: Convex, B: Convex>(
     b: &B,
     frame_b: &Frame,
     rel: &Frame,
-) -> Option<(DVec3, f64)> {
-    let (na, nb) = (a.topology().vertex_count() as u32, b.topology().vertex_count() as u32);
-    let (fa, fb) = (a.topology().face_count() as u32, b.topology().face_count() as u32);
+) -> Option<AxisGap> {
+    let (ta, tb) = (a.topology(), b.topology());
+    let (na, nb) = (ta.vertex_count() as u32, tb.vertex_count() as u32);
+    let (fa, fb) = (ta.face_count() as u32, tb.face_count() as u32);
     let exact = f64::NEG_INFINITY;
+    // A corner of a face: a highest point of its shape along the normal.
+    let corner = |t: &Topology, f: u32| t.half_edge(t.face_edges[f as usize]).origin;
     match feature {
         Feature::None => None,
         Feature::Centres { support_a, support_b } if support_a < na && support_b < nb => {
-            centre_axis(a, b, rel, Some((support_a, support_b))).map(|g| (g.axis, g.gap))
+            centre_axis(a, b, rel, Some((support_a, support_b)))
         }
         Feature::FaceA { face, support } if face < fa && support < nb => {
             let q = face_separation(a, b, rel, face, support, exact);
-            Some((a.plane(face).normal, q.separation))
+            let on_face = corner(ta, face);
+            Some(AxisGap {
+                axis: a.plane(face).normal,
+                gap: q.separation,
+                high_a: a.vertex(on_face),
+                low_b: rel.apply(b.vertex(q.support)),
+                supports: (on_face, q.support),
+            })
         }
         Feature::FaceB { face, support } if face < fb && support < na => {
             let q = face_separation(b, a, &frame_b.relative(frame_a), face, support, exact);
-            Some((-rel.rotate(b.plane(face).normal), q.separation))
+            let on_face = corner(tb, face);
+            Some(AxisGap {
+                axis: -rel.rotate(b.plane(face).normal),
+                gap: q.separation,
+                high_a: a.vertex(q.support),
+                low_b: rel.apply(b.vertex(on_face)),
+                supports: (q.support, on_face),
+            })
         }
         Feature::Edges { edge_a, half_edge_b }
-            if (edge_a as usize) < a.topology().edges.len()
-                && (half_edge_b as usize) < b.topology().half_edges.len() =>
+            if (edge_a as usize) < ta.edges.len()
+                && (half_edge_b as usize) < tb.half_edges.len() =>
         {
             edge_gap(a, b, rel, edge_a, half_edge_b)
         }
@@ -127,7 +144,7 @@ fn edge_gap<A: Convex, B: Convex>(
     rel: &Frame,
     edge_a: u32,
     half_edge_b: u32,
-) -> Option<(DVec3, f64)> {
+) -> Option<AxisGap> {
     let (ta, tb) = (a.topology(), b.topology());
     let h = ta.edges[edge_a as usize];
     let edge = ta.half_edge(h);
@@ -137,5 +154,5 @@ fn edge_gap<A: Convex, B: Convex>(
     let pb = b.vertex(vb);
     let eb = rel.rotate(b.vertex(tb.head(half_edge_b)) - pb);
     let (_, axis) = edge_separation(tail, a.vertex(ta.head(h)) - tail, rel.apply(pb), eb, outward)?;
-    Some((axis, axis_gap(a, b, rel, axis, edge.origin, vb).gap))
+    Some(axis_gap(a, b, rel, axis, edge.origin, vb))
 }
