@@ -60,7 +60,9 @@ pub(crate) enum Feature {
 /// A call re-tests that axis first: if it still separates the pair, by a
 /// margin, the call answers [`Separated`](crate::Collision::Separated) at once,
 /// after one support point of each shape. Otherwise it runs the full query,
-/// whose answer does not depend on the cache. So the cache never changes
+/// whose answer does not depend on the cache: the gap along the cached axis
+/// and its support points only let it skip faces and edges that cannot be
+/// picked, which makes touching pairs cheaper too. So the cache never changes
 /// whether a pair is apart or touching, nor any contact; only which separating
 /// axis a pair that is apart is reported with. A cache from another pair of
 /// shapes is harmless: features out of range are ignored.
