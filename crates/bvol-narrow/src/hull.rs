@@ -144,11 +144,11 @@ fn full_query<A: Convex, B: Convex>(
         low_b: rel.apply(b.inner_ball().0),
         supports: (0, 0),
     });
-    let floor = c.gap.max(cached.map_or(f64::NEG_INFINITY, |k| k.gap)) - 2.0 * slack;
     // Each face query starts from the face most facing the other shape; the
     // support points along the cached axis, near last call's contact, or
     // else along the centre line, are the witnesses of the bounds.
     let w = cached.unwrap_or(c);
+    let floor = c.gap.max(w.gap) - 2.0 * slack;
     let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b);
     if face_a.separation > 0.0 {
         return pair.separated(Choice::FaceA(face_a));
