@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use bvol_narrow::WarmStart;
+use bvol_narrow::{Contact, WarmStart};
 use bvol_tree::Tree;
 use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere};
 use glam::Vec3;
@@ -47,6 +47,18 @@ pub struct World {
     pub(crate) orphaned: Vec<ContactEvent>,
     pub(crate) events: Vec<ContactEvent>,
     pub(crate) stats: FrameStats,
+    /// The narrow phase's buffers, kept from frame to frame.
+    pub(crate) scratch: Scratch,
+}
+
+/// Buffers that one frame fills and the next refills: their contents are
+/// never read across frames.
+#[derive(Debug, Default)]
+pub(crate) struct Scratch {
+    /// Each candidate pair's state, while the narrow phase runs.
+    pub(crate) states: Vec<PairState>,
+    /// Each candidate pair's contact, if it touches.
+    pub(crate) contacts: Vec<Option<Contact>>,
 }
 
 /// Pairs' states by `(lower slot, higher slot)`, sorted by it.
@@ -114,13 +126,15 @@ impl World {
             None if b.shapes.len() < Tree::<Aabb>::ID_LIMIT as usize => b.shapes.len() as u32,
             None => return Err(WorldError::Full),
         };
-        let generation = b.generations.get(index as usize).copied().unwrap_or(0);
+        // A free slot's generation is even; a live body's is the next, odd.
+        let generation = b.generations.get(index as usize).map_or(1, |g| g.wrapping_add(1));
         let id = BodyId { index, generation };
         check_pose(id, &desc.pose)?;
         if b.free.pop().is_none() {
             b.grow();
         }
         let i = index as usize;
+        b.generations[i] = generation;
         b.poses[i] = desc.pose;
         b.kinds[i] = desc.kind;
         b.user_data[i] = desc.user_data;
@@ -149,6 +163,7 @@ impl World {
         }
         let b = &mut self.bodies;
         b.shapes[i] = None;
+        // Even again: no handle given out matches a free slot.
         b.generations[i] = b.generations[i].wrapping_add(1);
         b.free.push(id.index);
         b.count -= 1;
@@ -287,12 +302,13 @@ impl World {
         if self.live(id) { Ok(id.index as usize) } else { Err(WorldError::UnknownBody(id)) }
     }
 
-    /// Whether `id` names a body in this world.
+    /// Whether `id` names a body in this world. Handles are given out with
+    /// odd generations and a slot's generation is odd only while a body
+    /// holds it (wrapping keeps the parity), so one compare tells, without
+    /// reading the shapes (`set_poses` checks every id it is given).
     #[inline]
     fn live(&self, id: BodyId) -> bool {
-        let i = id.index as usize;
-        let b = &self.bodies;
-        b.shapes.get(i).is_some_and(Option::is_some) && b.generations[i] == id.generation
+        self.bodies.generations.get(id.index as usize) == Some(&id.generation)
     }
 
     /// The handle of the body in `slot` now.
