@@ -118,20 +118,24 @@ pub(crate) fn box_queries(
     let m = [rows.x_axis, rows.y_axis, rows.z_axis]; // m[i][j] = R[i][j]
     let abs_rows = m.map(DVec3::abs);
     let columns = [r.x_axis, r.y_axis, r.z_axis]; // B's axes in A's space
+    // Plain arrays and fixed loops: they unroll into straight-line code
+    // (indexing a `DVec3` by a variable checks the index each time).
+    let (t3, ha3, hb3) = (t.to_array(), ha.to_array(), hb.to_array());
     // A's faces.
     let mut face_a = (0, f64::NEG_INFINITY);
     for i in 0..3 {
-        let gap = t[i].abs() - ha[i] - abs_rows[i].dot(hb);
+        let gap = t3[i].abs() - ha3[i] - abs_rows[i].dot(hb);
         if gap > face_a.1 {
             face_a = (i, gap);
         }
     }
     // B's faces: A's centre in B's space is `-R^T t`.
     let centre_a = -(rows * t);
+    let centre3 = centre_a.to_array();
     let mut face_b = (0, f64::NEG_INFINITY);
-    for (j, column) in columns.iter().enumerate() {
-        let reach_a = column.abs().dot(ha);
-        let gap = centre_a[j].abs() - hb[j] - reach_a;
+    for j in 0..3 {
+        let reach_a = columns[j].abs().dot(ha);
+        let gap = centre3[j].abs() - hb3[j] - reach_a;
         if gap > face_b.1 {
             face_b = (j, gap);
         }
@@ -144,18 +148,19 @@ pub(crate) fn box_queries(
     // 0, `R[i][j2]` and `-R[i][j1]` for `k = j, j1, j2`, R being a rotation.
     // Gaps are ranked by their signed squares over `|l|^2`, cross-multiplied:
     // no root or division until the winner.
+    let (m, abs_m) = (m.map(|r| r.to_array()), abs_rows.map(|r| r.to_array()));
     let mut edge: Option<(usize, usize, f64, f64)> = None; // i, j, gap, |l|^2
-    for (i, abs_row) in abs_rows.iter().enumerate() {
+    for (i, abs_row) in abs_m.iter().enumerate() {
         let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
-        for (j, (r1, r2)) in m[i1].to_array().into_iter().zip(m[i2].to_array()).enumerate() {
+        for (j, (&r1, &r2)) in m[i1].iter().zip(&m[i2]).enumerate() {
             let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
             let len2 = r1 * r1 + r2 * r2;
             if len2 <= PARALLEL_SINE * PARALLEL_SINE {
                 continue;
             }
-            let along = r1 * t[i2] - r2 * t[i1];
-            let reach_a = ha[i1] * r2.abs() + ha[i2] * r1.abs();
-            let reach_b = hb[j1] * abs_row[j2] + hb[j2] * abs_row[j1];
+            let along = r1 * t3[i2] - r2 * t3[i1];
+            let reach_a = ha3[i1] * r2.abs() + ha3[i2] * r1.abs();
+            let reach_b = hb3[j1] * abs_row[j2] + hb3[j2] * abs_row[j1];
             let gap = along.abs() - reach_a - reach_b;
             if edge.is_none_or(|(_, _, g, l)| gap * gap.abs() * l > g * g.abs() * len2) {
                 edge = Some((i, j, gap, len2));
