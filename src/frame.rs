@@ -188,27 +188,29 @@ impl World {
         dirty
     }
 
-    /// Moves the refit bodies' leaves, each tree in one call that picks
-    /// per-leaf updates or a refit by the fraction moved, and inserts new
-    /// ones.
+    /// Moves the refit bodies' leaves and adds the new ones, each tree in
+    /// one call for each: moves pick per-leaf updates or a refit by the
+    /// fraction moved; many new leaves at once (a level load) take one
+    /// batch build.
     fn update_trees(&mut self, refit: &[u32]) {
-        let (mut moving, mut resting) = (Vec::new(), Vec::new());
+        let [mut moving, mut resting, mut new_moving, mut new_resting] =
+            std::array::from_fn(|_| Vec::new());
         for &slot in refit {
             let leaf = self.bodies.leaves[slot as usize];
             let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
-            let tree = if dynamic { &mut self.moving } else { &mut self.resting };
-            if !tree.contains(slot) {
-                // A live slot and a finite box: the insertion cannot fail.
-                tree.insert(slot, leaf).ok();
-            } else if dynamic {
-                moving.push((slot, leaf));
+            let (tree, moved, new) = if dynamic {
+                (&self.moving, &mut moving, &mut new_moving)
             } else {
-                resting.push((slot, leaf));
-            }
+                (&self.resting, &mut resting, &mut new_resting)
+            };
+            if tree.contains(slot) { moved } else { new }.push((slot, leaf));
         }
-        // Every id is in its tree and every box finite: neither can fail.
+        // Every id is live, in its tree or new to it, and every box finite:
+        // none of these can fail.
         self.moving.update_moved(&moving).ok();
         self.resting.update_moved(&resting).ok();
+        self.moving.insert_many(&new_moving).ok();
+        self.resting.insert_many(&new_resting).ok();
     }
 
     /// Pairs of overlapping leaves that the bodies' filters allow, each as

@@ -53,7 +53,7 @@ pub enum TreeError {
         /// The id.
         id: u32,
     },
-    /// `id` is already in the tree.
+    /// `id` is already in the tree, or given twice in one call.
     DuplicateId {
         /// The id.
         id: u32,
@@ -70,7 +70,9 @@ impl fmt::Display for TreeError {
         match self {
             TreeError::InvalidBound { id, reason } => write!(f, "the bound of id {id} {reason}"),
             TreeError::UnknownId { id } => write!(f, "id {id} is not in the tree"),
-            TreeError::DuplicateId { id } => write!(f, "id {id} is already in the tree"),
+            TreeError::DuplicateId { id } => {
+                write!(f, "id {id} is already in the tree, or given twice")
+            }
             TreeError::IdOutOfRange { id } => write!(
                 f,
                 "id {id} is too large: ids index the tree's per-id arrays and must be below {}",

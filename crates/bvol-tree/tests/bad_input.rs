@@ -49,6 +49,11 @@ fn invalid_bounds_are_refused_everywhere() {
         unchanged(&tree);
         assert_eq!(tree.set_bound(3, b), Err(TreeError::InvalidBound { id: 3, reason }));
         unchanged(&tree);
+        // Many at once, enough for a batch build: the bad one is named.
+        let many: Vec<(u32, Aabb)> =
+            (30..60).map(|id| (id, if id == 41 { b } else { unit(id as f32) })).collect();
+        assert_eq!(tree.insert_many(&many), Err(TreeError::InvalidBound { id: 41, reason }));
+        unchanged(&tree);
         let mut frame: Vec<Aabb> = (0..20).map(|i| unit(i as f32)).collect();
         frame[7] = b;
         assert_eq!(tree.update(&frame), Err(TreeError::InvalidBound { id: 7, reason }));
@@ -90,6 +95,12 @@ fn unknown_duplicate_and_out_of_range_ids_are_refused() {
         Err(TreeError::IdOutOfRange { id: 1 << 28 })
     );
     assert_eq!(tree.insert(u32::MAX, unit(0.0)), Err(TreeError::IdOutOfRange { id: u32::MAX }));
+    let out_of_range = [(30, unit(0.0)), (Tree::<Aabb>::ID_LIMIT + 1, unit(0.0))];
+    assert_eq!(tree.insert_many(&out_of_range), Err(TreeError::IdOutOfRange { id: (1 << 28) + 1 }));
+    let present = [(30, unit(0.0)), (31, unit(0.0)), (4, unit(0.0))];
+    assert_eq!(tree.insert_many(&present), Err(TreeError::DuplicateId { id: 4 }));
+    let twice: Vec<(u32, Aabb)> = [30, 31, 32, 31, 30].map(|id| (id, unit(0.0))).to_vec();
+    assert_eq!(tree.insert_many(&twice), Err(TreeError::DuplicateId { id: 31 }));
     unchanged(&tree);
     tree.remove(4).unwrap();
     assert_eq!(tree.remove(4), Err(TreeError::UnknownId { id: 4 }));
@@ -107,7 +118,10 @@ fn errors_say_what_and_where() {
     let nan = TreeError::InvalidBound { id: 3, reason: BoundError::NonFinite };
     assert_eq!(nan.to_string(), "the bound of id 3 has a NaN or infinite coordinate");
     assert_eq!(TreeError::UnknownId { id: 5 }.to_string(), "id 5 is not in the tree");
-    assert_eq!(TreeError::DuplicateId { id: 5 }.to_string(), "id 5 is already in the tree");
+    assert_eq!(
+        TreeError::DuplicateId { id: 5 }.to_string(),
+        "id 5 is already in the tree, or given twice"
+    );
     assert!(TreeError::IdOutOfRange { id: u32::MAX }.to_string().contains("4294967295"));
 }
 

@@ -15,6 +15,8 @@ const IDS: u32 = 40;
 #[derive(Clone, Debug)]
 enum Op<B> {
     Insert(u32, B),
+    /// Several at once (ids may repeat, or be in the tree already).
+    InsertMany(Vec<(u32, B)>),
     Remove(u32),
     /// A small move: shifted by half grid steps.
     Nudge(u32, [i8; 3]),
@@ -53,6 +55,7 @@ fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
     let small = prop::array::uniform3(-3i8..=3);
     prop_oneof![
         6 => (id.clone(), any_bound::<B>()).prop_map(|(i, b)| Op::Insert(i, b)),
+        2 => prop::collection::vec((id.clone(), any_bound::<B>()), 0..24).prop_map(Op::InsertMany),
         2 => id.clone().prop_map(Op::Remove),
         6 => (id.clone(), small).prop_map(|(i, d)| Op::Nudge(i, d)),
         2 => (id.clone(), any_bound::<B>()).prop_map(|(i, b)| Op::Set(i, b)),
@@ -127,6 +130,24 @@ impl<B: TestBound> Check<B> {
                 } else {
                     prop_assert_eq!(got, Ok(()));
                     self.model[*id as usize] = Some(*b);
+                }
+            }
+            Op::InsertMany(leaves) => {
+                // The first id already in the tree, else the first given twice.
+                let present = leaves.iter().find(|l| self.model[l.0 as usize].is_some());
+                let twice =
+                    (1..leaves.len()).find(|&k| leaves[..k].iter().any(|l| l.0 == leaves[k].0));
+                let want = match (present, twice) {
+                    (Some(&(id, _)), _) => Err(TreeError::DuplicateId { id }),
+                    (None, Some(k)) => Err(TreeError::DuplicateId { id: leaves[k].0 }),
+                    (None, None) => Ok(()),
+                };
+                let len = self.tree.len();
+                prop_assert_eq!(self.tree.insert_many(leaves), want);
+                if want.is_ok() {
+                    leaves.iter().for_each(|&(id, b)| self.model[id as usize] = Some(b));
+                } else {
+                    prop_assert_eq!(self.tree.len(), len);
                 }
             }
             Op::Remove(id) => {
