@@ -327,7 +327,7 @@ fn sort_by_slot(pairs: &[(u32, u32)], slots: usize) -> Vec<(u32, u32)> {
 /// Last frame's pair states (sorted by key) matched with this frame's
 /// sorted `pairs`: `states` gets each pair's state (a fresh one for a new
 /// pair); the old pairs that are not among them are returned, in order.
-/// `old` is left empty, its buffer kept for this frame's states.
+/// `old` is left empty, its buffer kept to hold this frame's pairs.
 fn carry_over(
     old: &mut PairStates,
     pairs: &[(u32, u32)],
