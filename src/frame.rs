@@ -6,7 +6,7 @@
 use std::time::{Duration, Instant};
 
 use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
-use bvol_volumes::{BodyBounds, Pose, WorldBounds, prefetch};
+use bvol_volumes::{Aabb, BodyBounds, Pose, WorldBounds, prefetch};
 use rayon::prelude::*;
 
 use crate::shape::Part;
@@ -105,32 +105,40 @@ impl World {
         stats.refit = refit.len();
         let t = Instant::now();
         stats.bounds_time = t - start;
-        self.update_trees(&refit);
+        // This frame's lists go in last frame's buffers (see `Scratch`).
+        let mut scratch = std::mem::take(&mut self.scratch);
+        self.update_trees(&refit, &mut scratch.leaves);
         // The list's buffer serves the next frame's moved bodies.
         self.bodies.dirty = refit;
         self.bodies.dirty.clear();
-        let candidates = self.candidates();
+        self.candidates(&mut scratch);
+        let Scratch { candidates, near, nearer, .. } = &mut scratch;
         stats.tree_candidates = candidates.len();
         let t2 = Instant::now();
         stats.tree_time = t2 - t;
         let bodies = &self.bodies;
-        let near = filter(
-            &candidates,
+        filter(
+            candidates,
             |b| prefetch(&bodies.spheres[b]),
             |a, b| bodies.spheres_overlap(a, b),
+            near,
         );
         stats.after_spheres = near.len();
         let t3 = Instant::now();
         stats.spheres_time = t3 - t2;
-        let nearer = filter(
-            &near,
+        filter(
+            near,
             |b| prefetch(&bodies.obbs[b]),
             |a, b| bodies.obbs[a].overlaps(&bodies.obbs[b]),
+            nearer,
         );
         stats.after_obbs = nearer.len();
         let t4 = Instant::now();
         stats.obbs_time = t4 - t3;
+        let nearer = std::mem::take(nearer);
+        self.scratch = scratch;
         stats.touching = self.narrow_phase(&nearer);
+        self.scratch.nearer = nearer;
         stats.narrow_time = t4.elapsed();
         self.stats = stats;
         &self.stats
@@ -192,31 +200,34 @@ impl World {
     /// one call for each: moves pick per-leaf updates or a refit by the
     /// fraction moved; many new leaves at once (a level load) take one
     /// batch build.
-    fn update_trees(&mut self, refit: &[u32]) {
-        let [mut moving, mut resting, mut new_moving, mut new_resting] =
-            std::array::from_fn(|_| Vec::new());
+    fn update_trees(&mut self, refit: &[u32], leaves: &mut [Vec<(u32, Aabb)>; 4]) {
+        let [moving, resting, new_moving, new_resting] = leaves;
+        for list in [&mut *moving, &mut *resting, &mut *new_moving, &mut *new_resting] {
+            list.clear();
+        }
         for &slot in refit {
             let leaf = self.bodies.leaves[slot as usize];
             let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
             let (tree, moved, new) = if dynamic {
-                (&self.moving, &mut moving, &mut new_moving)
+                (&self.moving, &mut *moving, &mut *new_moving)
             } else {
-                (&self.resting, &mut resting, &mut new_resting)
+                (&self.resting, &mut *resting, &mut *new_resting)
             };
             if tree.contains(slot) { moved } else { new }.push((slot, leaf));
         }
         // Every id is live, in its tree or new to it, and every box finite:
         // none of these can fail.
-        self.moving.update_moved(&moving).ok();
-        self.resting.update_moved(&resting).ok();
-        self.moving.insert_many(&new_moving).ok();
-        self.resting.insert_many(&new_resting).ok();
+        self.moving.update_moved(moving).ok();
+        self.resting.update_moved(resting).ok();
+        self.moving.insert_many(new_moving).ok();
+        self.resting.insert_many(new_resting).ok();
     }
 
     /// Pairs of overlapping leaves that the bodies' filters allow, each as
-    /// `(lower slot, higher slot)`, sorted.
-    fn candidates(&self) -> Vec<(u32, u32)> {
-        let mut pairs = self.moving.pairs();
+    /// `(lower slot, higher slot)`, sorted, into `scratch.candidates`.
+    fn candidates(&self, scratch: &mut Scratch) {
+        let pairs = &mut scratch.found;
+        self.moving.pairs_into(pairs);
         pairs.extend(
             self.moving.pairs_with(&self.resting).into_iter().map(|(a, b)| (a.min(b), a.max(b))),
         );
@@ -225,7 +236,7 @@ impl World {
             let (x, y) = (x as usize, y as usize);
             b.layers[x] & b.masks[y] != 0 && b.layers[y] & b.masks[x] != 0
         });
-        sort_by_slot(&pairs, b.shapes.len())
+        sort_by_slot(pairs, b.shapes.len(), &mut scratch.starts, &mut scratch.candidates);
     }
 
     /// The hull test on each pair, with its warm starts from last frame;
@@ -233,11 +244,10 @@ impl World {
     /// Returns how many touch. `pairs` is sorted, as last frame's states
     /// are: one merge pass hands each pair its state.
     fn narrow_phase(&mut self, pairs: &[(u32, u32)]) -> usize {
-        // Last frame's buffers are refilled, not allocated afresh: a frame
-        // of 100 000 bodies fills about 25 MB of them, and fresh pages cost
-        // a fault each (about 4 ms a frame).
+        // Last frame's buffers are refilled (see `Scratch`).
         let mut next = std::mem::take(&mut self.pairs);
-        let Scratch { mut states, mut contacts } = std::mem::take(&mut self.scratch);
+        let mut states = std::mem::take(&mut self.scratch.states);
+        let mut contacts = std::mem::take(&mut self.scratch.contacts);
         let left = carry_over(&mut next, pairs, &mut states);
         let bodies = &self.bodies;
         states
@@ -273,7 +283,7 @@ impl World {
             }
             next.push(((a, b), state));
         }
-        self.scratch = Scratch { states, contacts };
+        (self.scratch.states, self.scratch.contacts) = (states, contacts);
         // Pairs no longer candidates that touched have ended, unless both
         // bodies rest: a pile that falls asleep keeps its contacts, unchanged
         // and unreported, until one of them moves again.
@@ -304,15 +314,23 @@ impl World {
 /// are dense: one pass counts, one places; Knuth, TAOCP vol. 3, 5.2), then
 /// each slot's few pairs by `b`. On the 200 000 candidates of 100 000 bodies
 /// this took 1 ms where a comparison sort took 6.
-fn sort_by_slot(pairs: &[(u32, u32)], slots: usize) -> Vec<(u32, u32)> {
-    let mut starts = vec![0u32; slots + 1];
+/// `starts` is scratch; the result goes in `sorted`.
+fn sort_by_slot(
+    pairs: &[(u32, u32)],
+    slots: usize,
+    starts: &mut Vec<u32>,
+    sorted: &mut Vec<(u32, u32)>,
+) {
+    starts.clear();
+    starts.resize(slots + 1, 0);
     for &(a, _) in pairs {
         starts[a as usize + 1] += 1;
     }
     for i in 1..starts.len() {
         starts[i] += starts[i - 1];
     }
-    let mut sorted = vec![(0, 0); pairs.len()];
+    sorted.clear();
+    sorted.resize(pairs.len(), (0, 0));
     for &(a, b) in pairs {
         let at = &mut starts[a as usize];
         sorted[*at as usize] = (a, b);
@@ -321,7 +339,6 @@ fn sort_by_slot(pairs: &[(u32, u32)], slots: usize) -> Vec<(u32, u32)> {
     for run in sorted.chunk_by_mut(|x, y| x.0 == y.0) {
         run.sort_unstable();
     }
-    sorted
 }
 
 /// Last frame's pair states (sorted by key) matched with this frame's
@@ -350,24 +367,23 @@ fn carry_over(
 /// The pairs are sorted, so their first bodies come in memory order and
 /// their second ones scattered: `ahead` asks for the data `keep` will read of
 /// a second body [`AHEAD`] pairs early (about twice as fast on 100 000
-/// bodies, whose bounds are past the caches).
+/// bodies, whose bounds are past the caches). Into `out`.
 fn filter(
     pairs: &[(u32, u32)],
     ahead: impl Fn(usize) + Sync,
     keep: impl Fn(usize, usize) -> bool + Sync,
-) -> Vec<(u32, u32)> {
-    pairs
-        .par_chunks(PAIR_CHUNK)
-        .flat_map_iter(|chunk| {
-            let kept = chunk.iter().enumerate().filter(|&(k, &(a, b))| {
-                if let Some(&(_, later)) = chunk.get(k + AHEAD) {
-                    ahead(later as usize);
-                }
-                keep(a as usize, b as usize)
-            });
-            kept.map(|(_, &pair)| pair)
-        })
-        .collect()
+    out: &mut Vec<(u32, u32)>,
+) {
+    out.clear();
+    out.par_extend(pairs.par_chunks(PAIR_CHUNK).flat_map_iter(|chunk| {
+        let kept = chunk.iter().enumerate().filter(|&(k, &(a, b))| {
+            if let Some(&(_, later)) = chunk.get(k + AHEAD) {
+                ahead(later as usize);
+            }
+            keep(a as usize, b as usize)
+        });
+        kept.map(|(_, &pair)| pair)
+    }));
 }
 
 impl Bodies {
@@ -452,7 +468,9 @@ mod tests {
                 .collect();
             let mut want = pairs.clone();
             want.sort_unstable();
-            prop_assert_eq!(sort_by_slot(&pairs, 300), want);
+            let (mut starts, mut sorted) = (vec![7; 3], vec![(1, 2); 5]);
+            sort_by_slot(&pairs, 300, &mut starts, &mut sorted);
+            prop_assert_eq!(sorted, want);
         }
     }
 }

@@ -52,12 +52,26 @@ pub struct World {
 }
 
 /// Buffers that one frame fills and the next refills: their contents are
-/// never read across frames.
+/// never read across frames. A frame of 100 000 bodies fills tens of MB of
+/// them, and fresh pages cost a fault each (about 4 ms a frame in the
+/// narrow phase's, 0.6 ms in the sphere stage's).
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
-    /// Each candidate pair's state, while the narrow phase runs.
+    /// The refit bodies' leaves: moved and new, of each tree.
+    pub(crate) leaves: [Vec<(u32, Aabb)>; 4],
+    /// The trees' overlapping pairs, before sorting.
+    pub(crate) found: Vec<(u32, u32)>,
+    /// The counting sort's slot starts.
+    pub(crate) starts: Vec<u32>,
+    /// The candidate pairs, sorted.
+    pub(crate) candidates: Vec<(u32, u32)>,
+    /// Those whose spheres overlap.
+    pub(crate) near: Vec<(u32, u32)>,
+    /// Those whose OBBs overlap too.
+    pub(crate) nearer: Vec<(u32, u32)>,
+    /// Each of those pairs' state, while the narrow phase runs.
     pub(crate) states: Vec<PairState>,
-    /// Each candidate pair's contact, if it touches.
+    /// Each of those pairs' contact, if it touches.
     pub(crate) contacts: Vec<Option<Contact>>,
 }
 
