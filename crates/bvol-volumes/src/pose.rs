@@ -75,9 +75,38 @@ impl Pose {
         Pose { position: -(r * self.position), rotation: r }
     }
 
-    /// The rotation as an exactly orthonormal f64 matrix (the quaternion normalised in f64).
-    pub(crate) fn rotation_f64(&self) -> DMat3 {
-        DMat3::from_quat(self.rotation.as_dquat().normalize())
+    /// The rotation as an f64 matrix, orthonormal to f64 rounding whatever
+    /// f32 rounding did to the quaternion's length: the unit quaternion's
+    /// matrix with each product of two components scaled by `2 / |q|^2`
+    /// (Shoemake 1985), one division where normalising first takes a square
+    /// root and a division. The rotation must not be zero (see
+    /// [`is_finite`](Self::is_finite)).
+    ///
+    /// ```
+    /// use bvol_volumes::Pose;
+    /// use glam::{DMat3, DQuat, Quat, Vec3};
+    /// let q = Quat::from_rotation_y(0.7) * 3.0; // any length
+    /// let r = Pose::new(Vec3::ZERO, q).rotation_f64();
+    /// let unit = DMat3::from_quat(DQuat::from_rotation_y(0.7));
+    /// assert!(r.abs_diff_eq(unit, 1e-7)); // the f32 angle's rounding
+    /// assert!((r.transpose() * r).abs_diff_eq(DMat3::IDENTITY, 1e-15));
+    /// ```
+    pub fn rotation_f64(&self) -> DMat3 {
+        let q = self.rotation.as_dquat();
+        // The squares of f32 components do not underflow in f64, so a
+        // non-zero quaternion has a non-zero squared length, and each
+        // scaled product below is at most 2.
+        let s = 2.0 / q.length_squared();
+        let (x, y, z, w) = (q.x, q.y, q.z, q.w);
+        let (xs, ys, zs) = (x * s, y * s, z * s);
+        let (wx, wy, wz) = (w * xs, w * ys, w * zs);
+        let (xx, xy, xz) = (x * xs, x * ys, x * zs);
+        let (yy, yz, zz) = (y * ys, y * zs, z * zs);
+        DMat3::from_cols(
+            DVec3::new(1.0 - (yy + zz), xy + wz, xz - wy),
+            DVec3::new(xy - wz, 1.0 - (xx + zz), yz + wx),
+            DVec3::new(xz + wy, yz - wx, 1.0 - (xx + yy)),
+        )
     }
 
     /// This pose on one lane: its rotation (see [`rotation`]) and position.
@@ -125,4 +154,33 @@ pub(crate) fn place_point<L: Lane>(r: &M3<L>, position: V3<L>, p: V3<L>) -> (V3<
         * (L::splat(ROTATION_ERROR + 5.0 * eps) * p.abs().sum()
             + L::splat(eps) * position.abs().sum());
     (image, slip)
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::*;
+
+    proptest! {
+        /// The matrix of a quaternion of any length is glam's matrix of the
+        /// normalised quaternion, and orthonormal, to f64 rounding: each entry
+        /// takes a few roundings, each of `R^T R`'s a few more, so a few tens
+        /// of f64 epsilons (2.2e-16) bound both.
+        #[test]
+        fn rotation_of_any_length_is_the_unit_rotation(
+            q in prop::array::uniform4(-1.0f32..1.0),
+            scale in -15i32..=15,
+        ) {
+            let q = Quat::from_array(q) * 10f32.powi(scale);
+            prop_assume!(q.is_finite() && q.length_squared() > 0.0);
+            let got = Pose::new(Vec3::ZERO, q).rotation_f64();
+            let want = DMat3::from_quat(q.as_dquat().normalize());
+            let rounding = 50.0 * f64::EPSILON;
+            prop_assert!(got.abs_diff_eq(want, rounding), "{got} against {want}");
+            let square = got.transpose() * got;
+            prop_assert!(square.abs_diff_eq(DMat3::IDENTITY, rounding), "{square}");
+            prop_assert!((got.determinant() - 1.0).abs() < rounding);
+        }
+    }
 }
