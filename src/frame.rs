@@ -112,7 +112,7 @@ impl World {
         self.bodies.dirty = refit;
         self.bodies.dirty.clear();
         self.candidates(&mut scratch);
-        let Scratch { candidates, near, nearer, .. } = &mut scratch;
+        let Scratch { candidates, near, nearer, states, contacts, .. } = &mut scratch;
         stats.tree_candidates = candidates.len();
         let t2 = Instant::now();
         stats.tree_time = t2 - t;
@@ -135,10 +135,8 @@ impl World {
         stats.after_obbs = nearer.len();
         let t4 = Instant::now();
         stats.obbs_time = t4 - t3;
-        let nearer = std::mem::take(nearer);
+        stats.touching = self.narrow_phase(nearer, states, contacts);
         self.scratch = scratch;
-        stats.touching = self.narrow_phase(&nearer);
-        self.scratch.nearer = nearer;
         stats.narrow_time = t4.elapsed();
         self.stats = stats;
         &self.stats
@@ -242,13 +240,18 @@ impl World {
     /// The hull test on each pair, with its warm starts from last frame;
     /// then the events, from the pairs that touch now and those that did.
     /// Returns how many touch. `pairs` is sorted, as last frame's states
-    /// are: one merge pass hands each pair its state.
-    fn narrow_phase(&mut self, pairs: &[(u32, u32)]) -> usize {
-        // Last frame's buffers are refilled (see `Scratch`).
+    /// are: one merge pass hands each pair its state. `states` and
+    /// `contacts` are buffers for each pair's state and contact (see
+    /// `Scratch`).
+    fn narrow_phase(
+        &mut self,
+        pairs: &[(u32, u32)],
+        states: &mut Vec<PairState>,
+        contacts: &mut Vec<Option<Contact>>,
+    ) -> usize {
+        // Last frame's pairs' buffer holds this frame's.
         let mut next = std::mem::take(&mut self.pairs);
-        let mut states = std::mem::take(&mut self.scratch.states);
-        let mut contacts = std::mem::take(&mut self.scratch.contacts);
-        let left = carry_over(&mut next, pairs, &mut states);
+        let left = carry_over(&mut next, pairs, states);
         let bodies = &self.bodies;
         states
             .par_iter_mut()
@@ -263,12 +266,14 @@ impl World {
                 }
                 bodies.collide(a, b, state)
             })
-            .collect_into_vec(&mut contacts);
+            .collect_into_vec(contacts);
         let mut events = std::mem::take(&mut self.events);
         events.clear();
         events.append(&mut self.orphaned);
         let mut touching = 0;
-        for ((&(a, b), mut state), &contact) in pairs.iter().zip(states.drain(..)).zip(&contacts) {
+        for ((&(a, b), mut state), &contact) in
+            pairs.iter().zip(states.drain(..)).zip(contacts.iter())
+        {
             let was = state.touching;
             state.touching = contact.is_some();
             touching += usize::from(state.touching);
@@ -283,7 +288,6 @@ impl World {
             }
             next.push(((a, b), state));
         }
-        (self.scratch.states, self.scratch.contacts) = (states, contacts);
         // Pairs no longer candidates that touched have ended, unless both
         // bodies rest: a pile that falls asleep keeps its contacts, unchanged
         // and unreported, until one of them moves again.

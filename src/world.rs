@@ -47,7 +47,7 @@ pub struct World {
     pub(crate) orphaned: Vec<ContactEvent>,
     pub(crate) events: Vec<ContactEvent>,
     pub(crate) stats: FrameStats,
-    /// The narrow phase's buffers, kept from frame to frame.
+    /// The buffers of a frame's lists, kept from frame to frame.
     pub(crate) scratch: Scratch,
 }
 
