@@ -48,7 +48,8 @@ pub fn obb_obb(a: &Obb, pose_a: &Pose, b: &Obb, pose_b: &Pose) -> Result<Collisi
         &Cuboid::new(b.half_extents),
         &frame_b.with_box(b.center, b.axes),
         &mut WarmStart::default(),
-    ))
+    )
+    .collision())
 }
 
 /// Whether a box's fields are finite and its half extents not negative.

@@ -51,7 +51,10 @@ pub enum Collision {
     Separated {
         /// Unit world direction from A to B along which they are apart.
         axis: Vec3,
-        /// The gap along `axis`, `> 0`: a lower bound of their distance.
+        /// The gap along `axis`, `> 0`, or a lower bound of it: a lower bound
+        /// of their distance. The gap itself when measured at this call; when
+        /// a warm start answered from the bodies' motion alone, the gap last
+        /// measured less how far the motion can have closed it.
         distance: f32,
     },
     /// The bodies overlap or touch exactly (depth 0).

@@ -23,10 +23,19 @@ impl Frame {
     /// orthonormal to f64 rounding whatever f32 rounding did to the
     /// quaternion.
     pub fn of_pose(pose: &Pose, body: Body) -> Result<Frame, NarrowError> {
-        if !pose.is_finite() {
-            return Err(NarrowError::NonFinitePose { body });
-        }
-        Ok(Frame { rotation: pose.rotation_f64(), translation: pose.position.as_dvec3() })
+        Frame::check(pose, body)?;
+        Ok(Frame::of_checked(pose))
+    }
+
+    /// [`NarrowError::NonFinitePose`] for a pose with a NaN or infinite
+    /// component or a zero rotation.
+    pub fn check(pose: &Pose, body: Body) -> Result<(), NarrowError> {
+        if pose.is_finite() { Ok(()) } else { Err(NarrowError::NonFinitePose { body }) }
+    }
+
+    /// The frame of a pose that passed [`Frame::check`].
+    pub fn of_checked(pose: &Pose) -> Frame {
+        Frame { rotation: pose.rotation_f64(), translation: pose.position.as_dvec3() }
     }
 
     /// This frame followed by a box's own placement inside it: `center` and the

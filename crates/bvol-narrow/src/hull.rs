@@ -8,7 +8,7 @@ use crate::convex::Convex;
 use crate::frame::Frame;
 use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
 use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, edge_query, face_query};
-use crate::warm::{Feature, WarmStart, answers, retest};
+use crate::warm::{Apart, Feature, WarmStart, answers, margin, retest};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
 /// An edge contact is taken over a face contact only if its separation beats
@@ -35,16 +35,17 @@ const PREFER_ABS: f64 = 2e-5;
 /// f64 rounding of the f32 input.
 ///
 /// Apart: [`Collision::Separated`] with that axis and the gap along it (a
-/// lower bound of their distance). Touching: the axis of least penetration,
+/// lower bound of their distance), or a lower bound of the gap when the warm
+/// start answered from the bodies' motion alone. Touching: the axis of least penetration,
 /// preferring faces over edges and A's faces over B's within a small
 /// tolerance (2e-5 of the shapes' size), so
 /// resting contacts do not flicker; a face contact clips the incident face of
 /// the other shape against the reference face (up to 4 points), an edge
 /// contact has one point between the edges.
 ///
-/// `warm` carries the deciding feature from call to call (see [`WarmStart`]);
-/// it makes apart pairs cheap and never changes whether a pair touches, nor
-/// any contact.
+/// `warm` carries the deciding feature and the last gap measured from call
+/// to call (see [`WarmStart`]); it makes apart pairs cheap and never changes
+/// whether a pair touches, nor any contact.
 ///
 /// A pose with a NaN or infinite component (or a zero rotation) is
 /// [`NarrowError::NonFinitePose`].
@@ -70,9 +71,42 @@ pub fn hull_hull(
     pose_b: &Pose,
     warm: &mut WarmStart,
 ) -> Result<Collision, NarrowError> {
-    let frame_a = Frame::of_pose(pose_a, Body::A)?;
-    let frame_b = Frame::of_pose(pose_b, Body::B)?;
-    Ok(collide(a, &frame_a, b, &frame_b, warm))
+    Frame::check(pose_a, Body::A)?;
+    Frame::check(pose_b, Body::B)?;
+    if let Some(gap) = warm.apart.gap_above((a, pose_a), (b, pose_b), margin(a, b)) {
+        return Ok(Collision::separated(warm.apart.axis, gap));
+    }
+    let (frame_a, frame_b) = (Frame::of_checked(pose_a), Frame::of_checked(pose_b));
+    let answer = collide(a, &frame_a, b, &frame_b, warm);
+    warm.apart = match answer {
+        Answer::Apart { axis, gap } => Apart::measured(axis, gap, (a, pose_a), (b, pose_b)),
+        Answer::Touching(_) => Apart::NONE,
+    };
+    Ok(answer.collision())
+}
+
+/// A test's answer in f64, before it is rounded for the caller.
+#[derive(Clone, Copy, Debug)]
+pub(crate) enum Answer {
+    /// Apart along `axis` (unit, world space, from A to B) by `gap > 0`.
+    Apart {
+        /// The separating axis.
+        axis: DVec3,
+        /// The gap along it.
+        gap: f64,
+    },
+    /// Touching, with the contact.
+    Touching(Collision),
+}
+
+impl Answer {
+    /// The answer as the caller gets it.
+    pub(crate) fn collision(self) -> Collision {
+        match self {
+            Answer::Apart { axis, gap } => Collision::separated(axis, gap),
+            Answer::Touching(collision) => collision,
+        }
+    }
 }
 
 /// [`hull_hull`] for any two convex shapes placed by f64 frames.
@@ -82,12 +116,12 @@ pub(crate) fn collide<A: Convex, B: Convex>(
     b: &B,
     frame_b: &Frame,
     warm: &mut WarmStart,
-) -> Collision {
+) -> Answer {
     // B's space into A's.
     let rel = frame_a.relative(frame_b);
-    let (feature, collision) = query(a, frame_a, b, frame_b, &rel, warm.feature);
+    let (feature, answer) = query(a, frame_a, b, frame_b, &rel, warm.feature);
     warm.feature = feature;
-    collision
+    answer
 }
 
 /// The test from the cached feature `cached`: the deciding feature (the
@@ -99,7 +133,7 @@ fn query<A: Convex, B: Convex>(
     frame_b: &Frame,
     rel: &Frame,
     cached: Feature,
-) -> (Feature, Collision) {
+) -> (Feature, Answer) {
     let slack = PREFER_ABS * a.size().max(b.size());
     // Two boxes take closed-form queries of all 15 axes, which cost about
     // what re-testing one cached axis does: they skip the retest, which
@@ -122,7 +156,7 @@ fn query<A: Convex, B: Convex>(
     }
     let retested = retest(cached, a, frame_a, b, frame_b, rel);
     if let Some(c) = retested.filter(|c| answers(a, b, c.gap)) {
-        return (cached, Collision::separated(frame_a.rotate(c.axis), c.gap));
+        return (cached, Answer::Apart { axis: frame_a.rotate(c.axis), gap: c.gap });
     }
     full_query(a, frame_a, b, frame_b, rel, retested, slack)
 }
@@ -139,13 +173,13 @@ fn full_query<A: Convex, B: Convex>(
     rel: &Frame,
     cached: Option<AxisGap>,
     slack: f64,
-) -> (Feature, Collision) {
+) -> (Feature, Answer) {
     // The line between the centres first: it separates most pairs that are apart.
     let centres = centre_axis(a, b, rel, None);
     if let Some(c) = centres.filter(|c| c.gap > 0.0) {
         let (support_a, support_b) = c.supports;
         let feature = Feature::Centres { support_a, support_b };
-        return (feature, Collision::separated(frame_a.rotate(c.axis), c.gap));
+        return (feature, Answer::Apart { axis: frame_a.rotate(c.axis), gap: c.gap });
     }
     let inv = &frame_b.relative(frame_a);
     let pair = Pair { a, frame_a, b, frame_b, rel, inv };
@@ -231,7 +265,7 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         face_b: FaceQuery,
         edge: Option<EdgeQuery>,
         slack: f64,
-    ) -> (Feature, Collision) {
+    ) -> (Feature, Answer) {
         let deepest_face = face_a.separation.max(face_b.separation);
         let preferred = match edge {
             Some(e) if e.separation > deepest_face + slack => Choice::Edges(e),
@@ -268,14 +302,14 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
     }
 
     /// Apart along the choice's axis.
-    fn separated(&self, choice: Choice) -> (Feature, Collision) {
+    fn separated(&self, choice: Choice) -> (Feature, Answer) {
         let (axis, gap) = self.axis(choice);
-        (self.feature(choice), Collision::separated(axis, gap))
+        (self.feature(choice), Answer::Apart { axis, gap })
     }
 
     /// Touching along the choice's axis, with its manifold; `None` if a face's
     /// clipped incident face has no point at or below the reference plane.
-    fn touching(&self, choice: Choice) -> Option<(Feature, Collision)> {
+    fn touching(&self, choice: Choice) -> Option<(Feature, Answer)> {
         let (manifold, frame) = self.manifold(choice, false);
         (manifold.count > 0).then(|| self.answer(choice, &manifold, frame))
     }
@@ -283,7 +317,7 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
     /// Touching along a face's axis at the other shape's lowest vertex: for
     /// when rounding leaves the clipped face of even the least penetration
     /// just above its reference plane.
-    fn touching_at_support(&self, choice: Choice) -> (Feature, Collision) {
+    fn touching_at_support(&self, choice: Choice) -> (Feature, Answer) {
         let (manifold, frame) = self.manifold(choice, true);
         self.answer(choice, &manifold, frame)
     }
@@ -319,9 +353,10 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
     }
 
     /// The touching answer for a choice and its manifold (in the space `frame` maps).
-    fn answer(&self, choice: Choice, manifold: &Manifold, frame: &Frame) -> (Feature, Collision) {
+    fn answer(&self, choice: Choice, manifold: &Manifold, frame: &Frame) -> (Feature, Answer) {
         let (normal, separation) = self.axis(choice);
-        (self.feature(choice), Collision::touching(normal, -separation, manifold, frame))
+        let contact = Collision::touching(normal, -separation, manifold, frame);
+        (self.feature(choice), Answer::Touching(contact))
     }
 }
 

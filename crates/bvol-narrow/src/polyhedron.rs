@@ -1,6 +1,8 @@
 //! Convex polyhedra with what the separating-axis test reads precomputed.
 
 use bvol_volumes::{ConvexHull, FitError};
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use glam::{DVec3, Vec3};
 
 use crate::ShapeError;
@@ -34,6 +36,14 @@ pub struct Polyhedron {
     pub(crate) planes: Vec<Plane>,
     pub(crate) topology: Topology,
     pub(crate) size: f64,
+    /// The greatest distance of a vertex from the origin: how far a vertex
+    /// can move as the shape turns about its origin is at most this times
+    /// the chord of the turn.
+    pub(crate) reach: f64,
+    /// A number no other shape built in this process has (clones share it:
+    /// they are the same shape), so that a warm start can tell that it is
+    /// used with the shapes it was made with.
+    pub(crate) id: u64,
     /// The mean of the vertices, and its least distance to a face plane.
     pub(crate) inner_ball: (DVec3, f64),
     /// The Gauss-map arc of each edge of `topology.edges`.
@@ -51,6 +61,9 @@ pub struct Polyhedron {
     /// its origin, square to its axes (see [`BoxNumbering::of`]).
     pub(crate) box_shape: Option<(DVec3, BoxNumbering)>,
 }
+
+/// The next [`Polyhedron::id`].
+static NEXT_ID: AtomicU64 = AtomicU64::new(0);
 
 impl Polyhedron {
     /// The convex hull of the points, as a polyhedron.
@@ -114,6 +127,7 @@ impl Polyhedron {
             .iter()
             .fold((DVec3::INFINITY, DVec3::NEG_INFINITY), |(lo, hi), &v| (lo.min(v), hi.max(v)));
         let size = ((hi - lo) * 0.5).length();
+        let reach = points.iter().map(|p| p.length()).fold(0.0, f64::max);
         // The mean of the vertices is inside; a ball about it reaching no face
         // plane is inside too.
         let centre = points.iter().sum::<DVec3>() / points.len() as f64;
@@ -156,6 +170,8 @@ impl Polyhedron {
             planes,
             topology,
             size,
+            reach,
+            id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             inner_ball: (centre, radius.max(0.0)),
             arcs,
             face_clusters,

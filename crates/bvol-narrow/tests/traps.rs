@@ -651,11 +651,15 @@ fn tiny_and_huge_scales_scale_the_answer() {
 /// Seeded random pairs moving slowly (drifting and turning a little each
 /// step) past and into each other: every step, the answer with a cache kept
 /// across steps equals the answer with a fresh cache when touching, and is
-/// also apart (along an axis that really separates them) when apart.
+/// also apart (along an axis that really separates them) when apart. Its
+/// distance is the gap along that axis, measured, or a lower bound of it
+/// from the motion since the gap was last measured: then along the same axis,
+/// and short of that gap by no more than the bodies can have moved (each
+/// body's origin, plus its farthest vertex turning about it).
 #[test]
 fn warm_start_never_changes_the_answer() {
     let mut rng = Xoshiro256PlusPlus::seed_from_u64(8);
-    let mut early = 0;
+    let (mut early, mut bounded) = (0, 0);
     let mut steps = 0;
     for run in 0..60 {
         let pa_points =
@@ -672,6 +676,7 @@ fn warm_start_never_changes_the_answer() {
         let spin_a = Quat::from_axis_angle(random_rotation(&mut rng) * Vec3::X, 0.01);
         let spin_b = Quat::from_axis_angle(random_rotation(&mut rng) * Vec3::X, 0.02);
         let mut warm = WarmStart::default();
+        let mut measured: Option<(Vec3, f64, Pose, Pose)> = None;
         for step in 0..300 {
             let kept = hull_hull(&pair.a, &pa, &pair.b, &pb, &mut warm).expect("finite");
             let cold =
@@ -686,8 +691,21 @@ fn warm_start_never_changes_the_answer() {
                     let (wa, wb) =
                         (world_hull(&pair.points_a, &pa), world_hull(&pair.points_b, &pb));
                     let gap = gap_along(&wa, &wb, axis.as_dvec3());
+                    let (distance, tol) = (f64::from(distance), TOL * reach(&wa, &wb));
                     assert!(gap > 0.0, "{what}: warm axis {axis} does not separate ({gap})");
-                    assert!((gap - f64::from(distance)).abs() < TOL * reach(&wa, &wb), "{what}");
+                    assert!(distance <= gap + tol, "{what}: distance {distance}, gap {gap}");
+                    if distance >= gap - tol {
+                        measured = Some((axis, gap, pa, pb));
+                    } else {
+                        // Both turn every step, so a bound falls short of the gap.
+                        bounded += 1;
+                        let (then, gap_then, pa_then, pb_then) = measured.expect("measured");
+                        assert_eq!(axis, then, "{what}: bounded along another axis");
+                        let moved = motion(&pair.points_a, &pa_then, &pa)
+                            + motion(&pair.points_b, &pb_then, &pb);
+                        let least = gap_then - moved - tol;
+                        assert!(distance >= least, "{what}: {distance} from {gap_then}");
+                    }
                 }
             }
             steps += 1;
@@ -696,6 +714,42 @@ fn warm_start_never_changes_the_answer() {
         }
     }
     assert!(early > 0, "the cache never answered on its own in {steps} steps");
+    assert!(bounded > 0, "the motion never answered on its own in {steps} steps");
+}
+
+/// A warm start made with other shapes changes no answer: two small boxes
+/// far apart leave a large gap in the cache, and two large boxes at the same
+/// poses, overlapping, are still found touching (the gap measured is the
+/// small boxes', and no motion since would bound the large ones' by it).
+#[test]
+fn warm_start_of_other_shapes_is_ignored() {
+    let small = Polyhedron::from_points(&corners(Vec3::splat(0.5))).expect("a box");
+    let large = Polyhedron::from_points(&corners(Vec3::splat(2.0))).expect("a box");
+    let poses = [Pose::IDENTITY, Pose::new(Vec3::new(2.2, 0.1, 0.0), Quat::from_rotation_y(0.3))];
+    let mut warm = WarmStart::default();
+    let far = hull_hull(&small, &poses[0], &small, &poses[1], &mut warm).expect("finite");
+    assert!(!far.is_touching());
+    for (a, b) in [(&large, &large), (&small, &large), (&large, &small)] {
+        let mut kept = warm;
+        let got = hull_hull(a, &poses[0], b, &poses[1], &mut kept).expect("finite");
+        let cold = hull_hull(a, &poses[0], b, &poses[1], &mut WarmStart::default());
+        assert_eq!(got, cold.expect("finite"));
+        assert!(got.is_touching());
+    }
+    // A clone is the same shape: its cache answers for it.
+    let twin = small.clone();
+    let again = hull_hull(&twin, &poses[0], &twin, &poses[1], &mut warm).expect("finite");
+    assert_eq!(again, far);
+}
+
+/// How far any vertex of the points' hull can have moved from pose `then`
+/// to `now`: the origin's move, plus the chord that the farthest vertex from
+/// the origin sweeps through the angle between the rotations.
+fn motion(points: &[Vec3], then: &Pose, now: &Pose) -> f64 {
+    let far = points.iter().map(|p| p.as_dvec3().length()).fold(0.0, f64::max);
+    let angle =
+        then.rotation.as_dquat().normalize().angle_between(now.rotation.as_dquat().normalize());
+    (now.position.as_dvec3() - then.position.as_dvec3()).length() + 2.0 * far * (angle / 2.0).sin()
 }
 
 // ---------------------------------------------------------------------------
