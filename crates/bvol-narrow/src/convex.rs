@@ -105,6 +105,12 @@ pub(crate) trait Convex {
     /// The Gauss-map arc of edge `e` (an index into `topology().edges`).
     fn arc(&self, e: u32) -> Arc;
 
+    /// The cap and depth of arc `e` alone: what its first bounds read.
+    fn arc_cap(&self, e: u32) -> (Cap, f64) {
+        let arc = self.arc(e);
+        (arc.cap, arc.inner)
+    }
+
     /// The faces grouped by the directions of their normals.
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
 
@@ -228,6 +234,10 @@ impl Convex for Polyhedron {
 
     fn arc(&self, e: u32) -> Arc {
         self.arcs[e as usize]
+    }
+
+    fn arc_cap(&self, e: u32) -> (Cap, f64) {
+        self.arc_caps[e as usize]
     }
 
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {

@@ -48,6 +48,9 @@ pub struct Polyhedron {
     pub(crate) inner_ball: (DVec3, f64),
     /// The Gauss-map arc of each edge of `topology.edges`.
     pub(crate) arcs: Vec<Arc>,
+    /// Each arc's cap and depth, apart: the edge query's first bounds read
+    /// only these, of every arc.
+    pub(crate) arc_caps: Vec<(Cap, f64)>,
     /// The faces, numbered so that those facing alike are consecutive, in groups.
     pub(crate) face_clusters: Vec<Cluster>,
     /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
@@ -148,7 +151,8 @@ impl Polyhedron {
         let (edge_order, edge_clusters) =
             group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
-        let arcs = edge_order.iter().map(|&e| arcs[e as usize]).collect();
+        let arcs: Vec<Arc> = edge_order.iter().map(|&e| arcs[e as usize]).collect();
+        let arc_caps = arcs.iter().map(|a| (a.cap, a.inner)).collect();
         // First on ties, so the grid's centre slot (no direction) holds 0.
         let first_min = |m: (u32, f64), x: (u32, f64)| if x.1 < m.1 { x } else { m };
         let seeds = std::array::from_fn(|slot| {
@@ -174,6 +178,7 @@ impl Polyhedron {
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             inner_ball: (centre, radius.max(0.0)),
             arcs,
+            arc_caps,
             face_clusters,
             edge_clusters,
             seeds,

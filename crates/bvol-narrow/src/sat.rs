@@ -127,8 +127,8 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
         let bar = best.separation.max(floor);
         if cluster.is_group()
             && (best.separation > 0.0
-                || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar
-                || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar)
+                || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
+                || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar)
         {
             continue;
         }
@@ -137,8 +137,8 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
             let plane = reference.plane(f);
             if f == first
                 || best.separation > 0.0
-                || plane.distance(centre) - radius <= bar
                 || plane.distance(witness) <= bar
+                || plane.distance(centre) - radius <= bar
             {
                 continue;
             }
@@ -204,8 +204,8 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     let mut start: Option<u32> = None; // B's support point against the last arc's start
     let slack = SUPPORT_SLACK * a.size().max(b.size());
     let beaten = |cap: &Cap, inner: f64, bar: f64| {
-        cap.max(ball, ball_length) - inner - radius_b <= bar
-            || cap.max(witnessed, witnessed_length) - inner <= bar
+        cap.max(witnessed, witnessed_length) - inner <= bar
+            || cap.max(ball, ball_length) - inner - radius_b <= bar
     };
     for cluster in a.edge_clusters() {
         let bar = best.map_or(floor, |q| q.separation.max(floor));
@@ -214,13 +214,14 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
         }
         for e in cluster.members {
             let bar = best.map_or(floor, |q| q.separation.max(floor));
-            let arc = a.arc(e);
-            if beaten(&arc.cap, arc.inner, bar) {
+            let (cap, inner) = a.arc_cap(e);
+            if beaten(&cap, inner, bar) {
                 continue;
             }
+            let arc = a.arc(e);
             let h = ta.edges[e as usize];
             let tail = a.vertex(ta.half_edge(h).origin);
-            if arc.max(centre_b - tail) - radius_b <= bar || arc.max(witness - tail) <= bar {
+            if arc.max(witness - tail) <= bar || arc.max(centre_b - tail) - radius_b <= bar {
                 continue;
             }
             // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
