@@ -8,7 +8,9 @@
 //!   the edge pairs whose Gauss-map arcs cross, found by walking the arcs of
 //!   one across the Gauss map of the other; faces and arcs that cannot decide
 //!   are skipped by cheap bounds, in clusters. A per-pair [`WarmStart`] keeps
-//!   the deciding feature, so pairs that stay apart cost two support points.
+//!   the deciding feature and the last gap measured: a pair that stays apart
+//!   is mostly answered from the bodies' motion alone (the gap less how far
+//!   they can have come together), else at the cost of two support points.
 //! - [`obb_obb`]: the same test and contact on two boxes, without allocating.
 //! - [`sphere_hull`], [`sphere_obb`], [`sphere_sphere`]: closest points.
 //!
