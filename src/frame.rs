@@ -240,40 +240,38 @@ impl World {
     /// The hull test on each pair, with its warm starts from last frame;
     /// then the events, from the pairs that touch now and those that did.
     /// Returns how many touch. `pairs` is sorted, as last frame's states
-    /// are: one merge pass hands each pair its state. `states` and
-    /// `contacts` are buffers for each pair's state and contact (see
-    /// `Scratch`).
+    /// are: one merge pass moves each pair's state into `spare`, where the
+    /// test reads and updates it in place (a state is moved once a frame:
+    /// warm starts are some 100 bytes). `spare` and `contacts` are buffers
+    /// (see `Scratch`).
     fn narrow_phase(
         &mut self,
         pairs: &[(u32, u32)],
-        states: &mut Vec<PairState>,
+        spare: &mut PairStates,
         contacts: &mut Vec<Option<Contact>>,
     ) -> usize {
-        // Last frame's pairs' buffer holds this frame's.
-        let mut next = std::mem::take(&mut self.pairs);
-        let left = carry_over(&mut next, pairs, states);
+        let mut last = std::mem::take(&mut self.pairs);
+        let mut next = std::mem::take(spare);
+        let left = carry_over(&mut last, pairs, &mut next);
+        *spare = last;
         let bodies = &self.bodies;
-        states
-            .par_iter_mut()
-            .zip(pairs)
+        next.par_iter_mut()
             .enumerate()
             .with_min_len(NARROW_CHUNK)
-            .map(|(k, (state, &(a, b)))| {
+            .map(|(k, ((a, b), state))| {
                 if let Some(&(_, later)) = pairs.get(k + AHEAD) {
                     let later = later as usize;
                     prefetch(&bodies.poses[later]);
                     prefetch(&bodies.shapes[later]);
                 }
-                bodies.collide(a, b, state)
+                bodies.collide(*a, *b, state)
             })
             .collect_into_vec(contacts);
         let mut events = std::mem::take(&mut self.events);
         events.clear();
         events.append(&mut self.orphaned);
         let mut touching = 0;
-        for ((&(a, b), mut state), &contact) in
-            pairs.iter().zip(states.drain(..)).zip(contacts.iter())
-        {
+        for (&mut ((a, b), ref mut state), &contact) in next.iter_mut().zip(contacts.iter()) {
             let was = state.touching;
             state.touching = contact.is_some();
             touching += usize::from(state.touching);
@@ -286,7 +284,6 @@ impl World {
             if let Some(kind) = kind {
                 events.push(ContactEvent { kind, a: self.id_of(a), b: self.id_of(b), contact });
             }
-            next.push(((a, b), state));
         }
         // Pairs no longer candidates that touched have ended, unless both
         // bodies rest: a pile that falls asleep keeps its contacts, unchanged
@@ -346,22 +343,19 @@ fn sort_by_slot(
 }
 
 /// Last frame's pair states (sorted by key) matched with this frame's
-/// sorted `pairs`: `states` gets each pair's state (a fresh one for a new
-/// pair); the old pairs that are not among them are returned, in order.
-/// `old` is left empty, its buffer kept to hold this frame's pairs.
-fn carry_over(
-    old: &mut PairStates,
-    pairs: &[(u32, u32)],
-    states: &mut Vec<PairState>,
-) -> PairStates {
+/// sorted `pairs`: `next` gets each pair with its state (a fresh one for a
+/// new pair); the old pairs that are not among them are returned, in order.
+/// `old` is left empty, its buffer kept.
+fn carry_over(old: &mut PairStates, pairs: &[(u32, u32)], next: &mut PairStates) -> PairStates {
     let mut old = old.drain(..).peekable();
-    states.clear();
+    next.clear();
     let mut left = Vec::new();
     for &key in pairs {
         while let Some(gone) = old.next_if(|(k, _)| *k < key) {
             left.push(gone);
         }
-        states.push(old.next_if(|(k, _)| *k == key).map(|(_, state)| state).unwrap_or_default());
+        let state = old.next_if(|(k, _)| *k == key).map(|(_, state)| state);
+        next.push((key, state.unwrap_or_default()));
     }
     left.extend(old);
     left

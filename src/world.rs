@@ -69,8 +69,9 @@ pub(crate) struct Scratch {
     pub(crate) near: Vec<(u32, u32)>,
     /// Those whose OBBs overlap too.
     pub(crate) nearer: Vec<(u32, u32)>,
-    /// Each of those pairs' state, while the narrow phase runs.
-    pub(crate) states: Vec<PairState>,
+    /// The pair states' other buffer: the narrow phase moves last frame's
+    /// states into it, and keeps last frame's, emptied, for the next.
+    pub(crate) states: PairStates,
     /// Each of those pairs' contact, if it touches.
     pub(crate) contacts: Vec<Option<Contact>>,
 }

@@ -74,7 +74,7 @@ pub fn hull_hull(
     Frame::check(pose_a, Body::A)?;
     Frame::check(pose_b, Body::B)?;
     if let Some(gap) = warm.apart.gap_above((a, pose_a), (b, pose_b), margin(a, b)) {
-        return Ok(Collision::separated(warm.apart.axis, gap));
+        return Ok(Collision::separated(warm.apart.axis.as_dvec3(), gap));
     }
     let (frame_a, frame_b) = (Frame::of_checked(pose_a), Frame::of_checked(pose_b));
     let answer = collide(a, &frame_a, b, &frame_b, warm);

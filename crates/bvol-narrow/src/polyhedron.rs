@@ -1,7 +1,7 @@
 //! Convex polyhedra with what the separating-axis test reads precomputed.
 
 use bvol_volumes::{ConvexHull, FitError};
-use std::sync::atomic::{AtomicU64, Ordering};
+use std::sync::atomic::{AtomicU32, Ordering};
 
 use glam::{DVec3, Vec3};
 
@@ -40,10 +40,10 @@ pub struct Polyhedron {
     /// can move as the shape turns about its origin is at most this times
     /// the chord of the turn.
     pub(crate) reach: f64,
-    /// A number no other shape built in this process has (clones share it:
-    /// they are the same shape), so that a warm start can tell that it is
-    /// used with the shapes it was made with.
-    pub(crate) id: u64,
+    /// A number no other of the last 2^32 shapes built in this process has
+    /// (clones share it: they are the same shape), so that a warm start can
+    /// tell that it is used with the shapes it was made with.
+    pub(crate) id: u32,
     /// The mean of the vertices, and its least distance to a face plane.
     pub(crate) inner_ball: (DVec3, f64),
     /// The Gauss-map arc of each edge of `topology.edges`.
@@ -66,7 +66,7 @@ pub struct Polyhedron {
 }
 
 /// The next [`Polyhedron::id`].
-static NEXT_ID: AtomicU64 = AtomicU64::new(0);
+static NEXT_ID: AtomicU32 = AtomicU32::new(0);
 
 impl Polyhedron {
     /// The convex hull of the points, as a polyhedron.

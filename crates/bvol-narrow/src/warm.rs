@@ -2,7 +2,7 @@
 //! first on the next: a pair that was apart along an axis mostly still is.
 
 use bvol_volumes::Pose;
-use glam::{DVec3, Quat};
+use glam::{DVec3, Quat, Vec3};
 
 use crate::Polyhedron;
 use crate::convex::Convex;
@@ -96,18 +96,23 @@ pub struct WarmStart {
 /// of Bullet's `btConvexSeparatingDistanceUtil` (Coumans), with the turn
 /// bounded along the axis only: a rotation about the axis moves no point
 /// along it.
+///
+/// Stored in f32 (56 bytes: a pair's state is moved every frame): the
+/// rotations as given, the gap rounded down, and the axis rounded, which the
+/// bound allows for.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Apart {
-    /// The separating axis, unit, in the world, from A to B.
-    pub(crate) axis: DVec3,
-    /// The gap measured along `axis`, less `axis . (p_B - p_A)` for the
-    /// positions then: adding it for the positions now gives the gap had the
-    /// bodies only moved, not turned. `-inf` when nothing is measured.
-    base: f64,
-    /// A's and B's rotations then.
-    rotations: [Quat; 2],
+    /// The separating axis in the world, from A to B, unit to f32 rounding.
+    pub(crate) axis: Vec3,
+    /// A's and B's rotations then, as `[x, y, z, w]` (unaligned, to keep the
+    /// state small).
+    rotations: [[f32; 4]; 2],
+    /// A lower bound of the gap along `axis` then, less `axis . (p_B - p_A)`
+    /// for the positions then: adding it for the positions now gives the
+    /// gap had the bodies only moved, not turned. `-inf`: nothing measured.
+    base: f32,
     /// A's and B's shapes (their ids): the bound holds for these alone.
-    shapes: [u64; 2],
+    shapes: [u32; 2],
 }
 
 impl Default for Apart {
@@ -119,31 +124,40 @@ impl Default for Apart {
 impl Apart {
     /// Nothing measured: bounds no gap.
     pub(crate) const NONE: Apart = Apart {
-        axis: DVec3::ZERO,
-        base: f64::NEG_INFINITY,
-        rotations: [Quat::IDENTITY; 2],
-        shapes: [u64::MAX; 2],
+        axis: Vec3::ZERO,
+        rotations: [[0.0, 0.0, 0.0, 1.0]; 2],
+        base: f32::NEG_INFINITY,
+        shapes: [u32::MAX; 2],
     };
 
-    /// The gap `gap` measured along `axis` between shapes `a` and `b` at these poses.
+    /// The gap `gap` measured along the unit `axis` between shapes `a` and
+    /// `b` at these poses.
     pub(crate) fn measured(
         axis: DVec3,
         gap: f64,
         (a, pose_a): (&Polyhedron, &Pose),
         (b, pose_b): (&Polyhedron, &Pose),
     ) -> Apart {
+        let kept = axis.as_vec3();
+        let n = kept.as_dvec3();
         let offset = offset(pose_a, pose_b);
-        // Rounded down by as much as the sum may have rounded up.
-        let rounding = ROUNDING * (gap.abs() + offset.abs().max_element());
-        let base = gap - axis.dot(offset) - rounding;
-        Apart { axis, base, rotations: [pose_a.rotation, pose_b.rotation], shapes: [a.id, b.id] }
+        // Along the rounded axis (off by at most STORED) the gap is off by
+        // at most that times how far apart two points of the shapes can be.
+        let apart = offset.abs().element_sum() + a.reach + b.reach;
+        let slack = STORED * apart + ROUNDING * gap.abs();
+        Apart {
+            axis: kept,
+            rotations: [pose_a.rotation.to_array(), pose_b.rotation.to_array()],
+            base: down(gap - slack - n.dot(offset)),
+            shapes: [a.id, b.id],
+        }
     }
 
-    /// A lower bound of the gap along [`Apart::axis`] between shapes `a` and
-    /// `b` at these (finite) poses, if it is above `margin`; `None` for other
-    /// shapes than measured. Rounding is allowed for: the f64 sums are off by
-    /// a few units in the last place of the positions, the turns by a few of
-    /// the reach.
+    /// A lower bound of the gap along [`Apart::axis`] made unit, between
+    /// shapes `a` and `b` at these (finite) poses, if it is above `margin`;
+    /// `None` for other shapes than measured. Rounding is allowed for: the
+    /// f64 sums are off by a few units in the last place of the positions,
+    /// the turns by a few of the reach.
     pub(crate) fn gap_above(
         &self,
         (a, pose_a): (&Polyhedron, &Pose),
@@ -153,44 +167,54 @@ impl Apart {
         if self.shapes != [a.id, b.id] {
             return None;
         }
-        let reach = (a.reach, b.reach);
+        let n = self.axis.as_dvec3();
         let offset = offset(pose_a, pose_b);
-        let rounding =
-            ROUNDING * (self.base.abs() + offset.abs().max_element() + reach.0 + reach.1);
-        // -inf when nothing was measured.
-        let moved = self.base + self.axis.dot(offset) - rounding;
+        let base = f64::from(self.base); // -inf when nothing was measured
+        let rounding = ROUNDING * (base.abs() + offset.abs().max_element() + a.reach + b.reach);
+        let moved = base + n.dot(offset) - rounding;
         if moved <= margin {
             return None;
         }
         let turned =
-            reach.0 * self.turn(0, pose_a.rotation) + reach.1 * self.turn(1, pose_b.rotation);
-        Some(moved - turned).filter(|&gap| gap > margin)
+            a.reach * self.turn(0, pose_a.rotation) + b.reach * self.turn(1, pose_b.rotation);
+        // The axis is unit to within STORED: along the unit axis the gap is
+        // at least this.
+        Some((moved - turned) * (1.0 - STORED)).filter(|&gap| gap > margin)
     }
-}
 
-/// Relative rounding allowed for in [`Apart`]'s f64 sums.
-const ROUNDING: f64 = 16.0 * f64::EPSILON;
-
-/// B's position less A's, in f64 (exact from f32).
-fn offset(pose_a: &Pose, pose_b: &Pose) -> DVec3 {
-    pose_b.position.as_dvec3() - pose_a.position.as_dvec3()
-}
-
-impl Apart {
     /// The furthest a point at unit distance from body `k`'s origin can have
-    /// moved along the axis as the body turned from its rotation then to
+    /// moved along the axis `n` as the body turned from its rotation then to
     /// `now` (of any non-zero length). For a turn `T` by angle `t` about the
     /// unit `u` (the unit `now * then^-1` is `(sin(t/2) u, cos(t/2))`), a
     /// point `y` moves by `(T - I) y`, so along `n` by `((T^-1 - I) n) . y`:
     /// at most `|(T^-1 - I) n|`, which is `2 sin(t/2) |n x u|`, for a unit
     /// `y`. That is twice `n` cross the turn's vector part.
     fn turn(&self, k: usize, now: Quat) -> f64 {
-        let (then, now) = (self.rotations[k].as_dquat(), now.as_dquat());
+        let (then, now) = (Quat::from_array(self.rotations[k]).as_dquat(), now.as_dquat());
         let turn = now * then.conjugate();
-        let across = self.axis.cross(DVec3::new(turn.x, turn.y, turn.z)).length_squared();
-        2.0 * (across / (now.length_squared() * then.length_squared())).sqrt()
+        let across = self.axis.as_dvec3().cross(DVec3::new(turn.x, turn.y, turn.z));
+        2.0 * (across.length_squared() / (now.length_squared() * then.length_squared())).sqrt()
     }
 }
+
+/// Relative rounding allowed for in [`Apart`]'s f64 sums.
+const ROUNDING: f64 = 16.0 * f64::EPSILON;
+
+/// How far from unit an f32-rounded unit vector's length may be: `2^-23`,
+/// more than the `2^-24` relative rounding of each component gives.
+const STORED: f64 = 1.0 / (1 << 23) as f64;
+
+/// B's position less A's, in f64 (exact from f32).
+fn offset(pose_a: &Pose, pose_b: &Pose) -> DVec3 {
+    pose_b.position.as_dvec3() - pose_a.position.as_dvec3()
+}
+
+/// The greatest f32 at most `x`.
+fn down(x: f64) -> f32 {
+    let y = x as f32;
+    if f64::from(y) > x { y.next_down() } else { y }
+}
+
 /// The cached feature's axis and the exact gap along it between `a` and `b`
 /// (placed by their frames; `rel` maps B's space into A's), from true
 /// support points, with a point of each shape at the gap's ends; `None` if
@@ -282,4 +306,29 @@ fn edge_gap<A: Convex, B: Convex>(
     let eb = rel.rotate(b.vertex(tb.head(half_edge_b)) - pb);
     let (_, axis) = edge_separation(tail, a.vertex(ta.head(h)) - tail, rel.apply(pb), eb, outward)?;
     Some(axis_gap(a, b, rel, axis, edge.origin, vb))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The bound from motion holds for the shapes it was measured with and
+    /// their clones (the same shapes), for no others; with nothing moved it
+    /// is the gap measured, less the roundings of storing it.
+    #[test]
+    fn bound_is_for_the_shapes_measured() {
+        let cube = Polyhedron::cuboid(Vec3::splat(0.5)).expect("a box");
+        let other = Polyhedron::cuboid(Vec3::splat(0.5)).expect("a box");
+        let turn = 0.3f32;
+        let (pa, pb) = (Pose::IDENTITY, Pose::new(Vec3::X * 3.0, Quat::from_rotation_y(turn)));
+        // B reaches back along x by half its width turned.
+        let gap = 3.0 - 0.5 - 0.5 * f64::from(turn.cos() + turn.sin());
+        let apart = Apart::measured(DVec3::X, gap, (&cube, &pa), (&cube, &pb));
+        let twin = cube.clone();
+        let bound = apart.gap_above((&twin, &pa), (&twin, &pb), 0.0).expect("the same shapes");
+        assert!(bound <= gap && bound > gap - 1e-6, "{bound} for {gap}");
+        assert_eq!(apart.gap_above((&other, &pa), (&cube, &pb), 0.0), None);
+        assert_eq!(apart.gap_above((&cube, &pa), (&other, &pb), 0.0), None);
+        assert_eq!(Apart::NONE.gap_above((&cube, &pa), (&cube, &pb), 0.0), None);
+    }
 }
