@@ -36,12 +36,12 @@ const PREFER_ABS: f64 = 2e-5;
 ///
 /// Apart: [`Collision::Separated`] with that axis and the gap along it (a
 /// lower bound of their distance), or a lower bound of the gap when the warm
-/// start answered from the bodies' motion alone. Touching: the axis of least penetration,
-/// preferring faces over edges and A's faces over B's within a small
-/// tolerance (2e-5 of the shapes' size), so
-/// resting contacts do not flicker; a face contact clips the incident face of
-/// the other shape against the reference face (up to 4 points), an edge
-/// contact has one point between the edges.
+/// start answered from the bodies' motion alone. Touching: the axis of least
+/// penetration, preferring faces over edges and A's faces over B's within a
+/// small tolerance (2e-5 of the shapes' size), so resting contacts do not
+/// flicker; a face contact clips the incident face of the other shape against
+/// the reference face (up to 4 points), an edge contact has one point between
+/// the edges.
 ///
 /// `warm` carries the deciding feature and the last gap measured from call
 /// to call (see [`WarmStart`]); it makes apart pairs cheap and never changes

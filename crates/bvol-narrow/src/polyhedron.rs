@@ -1,8 +1,8 @@
 //! Convex polyhedra with what the separating-axis test reads precomputed.
 
-use bvol_volumes::{ConvexHull, FitError};
 use std::sync::atomic::{AtomicU32, Ordering};
 
+use bvol_volumes::{ConvexHull, FitError};
 use glam::{DVec3, Vec3};
 
 use crate::ShapeError;
