@@ -72,17 +72,18 @@ pub(crate) enum Feature {
 /// no support point. Slowly moving pairs that are apart mostly end there.
 /// Otherwise the call re-tests the cached feature's axis: if it still
 /// separates the pair, by the margin, the call answers at once, after one
-/// support point of each shape. Otherwise it runs the full query,
-/// whose answer does not depend on the cache: the gap along the cached axis
-/// and its support points only let it skip faces and edges that cannot be
-/// picked, which makes touching pairs cheaper too. So the cache never changes
-/// whether a pair is apart or touching, nor any contact; only which separating
-/// axis a pair that is apart is reported with, and with what lower bound of
-/// the gap along it. A cache from another pair of
-/// shapes is harmless: features out of range are ignored. Two boxes (see
-/// [`Polyhedron::cuboid`](crate::Polyhedron::cuboid)) do not re-test the
-/// feature: their closed-form test of all 15 axes costs about what the retest
-/// does.
+/// support point of each shape. Otherwise it runs the full query, whose
+/// answer does not depend on the cache: the gap along the cached axis and its
+/// support points only let it skip faces and edges that cannot be picked,
+/// which makes touching pairs cheaper too. So the cache never changes whether
+/// a pair is apart or touching, nor any contact; only which separating axis a
+/// pair that is apart is reported with, and with what lower bound of the gap
+/// along it. A cache used with other shapes than it was made with is
+/// harmless: the bound is kept with the shapes' ids (a clone shares its
+/// original's) and is ignored for others, and features out of range are
+/// ignored. Two boxes (see [`Polyhedron::cuboid`](crate::Polyhedron::cuboid))
+/// do not re-test the feature: their closed-form test of all 15 axes costs
+/// about what the retest does.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WarmStart {
     pub(crate) feature: Feature,
