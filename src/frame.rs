@@ -402,7 +402,10 @@ impl Bodies {
         let (a, b) = (a as usize, b as usize);
         let (shape_a, shape_b) = (self.shapes[a].as_ref()?, self.shapes[b].as_ref()?);
         let (parts_a, parts_b) = (shape_a.parts(), shape_b.parts());
-        state.more.resize(parts_a.len() * parts_b.len() - 1, WarmStart::default());
+        let more = parts_a.len() * parts_b.len() - 1;
+        if state.more.len() != more {
+            state.more = vec![WarmStart::default(); more].into_boxed_slice();
+        }
         let mut deepest: Option<Contact> = None;
         for (i, pa) in parts_a.iter().enumerate() {
             for (j, pb) in parts_b.iter().enumerate() {

@@ -85,8 +85,10 @@ pub(crate) struct PairState {
     /// The warm start of the first pair of convex parts: the only one of
     /// most pairs, kept inline so that no pair allocates.
     pub(crate) warm: WarmStart,
-    /// Those of the other pairs of parts, for shapes of several.
-    pub(crate) more: Vec<WarmStart>,
+    /// Those of the other pairs of parts, for shapes of several: a boxed
+    /// slice, two words less than a `Vec` (every pair's state is moved each
+    /// frame, and most have none).
+    pub(crate) more: Box<[WarmStart]>,
     /// Whether it touched.
     pub(crate) touching: bool,
 }
