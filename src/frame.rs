@@ -190,7 +190,10 @@ impl World {
                 }
             }
         }
-        dirty.retain(|&s| b.shapes[s as usize].is_some());
+        // A pass over every slot, only when some may have been freed.
+        if std::mem::take(&mut b.removed) {
+            dirty.retain(|&s| b.shapes[s as usize].is_some());
+        }
         dirty
     }
 

@@ -116,6 +116,9 @@ pub(crate) struct Bodies {
     /// Slots whose pose changed since the last update, each once.
     pub(crate) dirty: Vec<u32>,
     pub(crate) is_dirty: Vec<bool>,
+    /// Whether a body was removed since the last update: `dirty` may then
+    /// hold slots that are free.
+    pub(crate) removed: bool,
     pub(crate) count: usize,
 }
 
@@ -180,6 +183,7 @@ impl World {
         }
         let b = &mut self.bodies;
         b.shapes[i] = None;
+        b.removed = true;
         // Even again: no handle given out matches a free slot.
         b.generations[i] = b.generations[i].wrapping_add(1);
         b.free.push(id.index);

@@ -355,6 +355,34 @@ fn bad_input_is_a_typed_error_and_changes_nothing() {
     assert!(matches!(Shape::cuboid(Vec3::ZERO), Err(ShapeError::Part { .. })));
 }
 
+/// A body moved and then removed before the next update leaves nothing
+/// behind: no tree leaf, no candidate pair, only its contact's end; and a
+/// body added into its slot in the same frame takes its place.
+#[test]
+fn bodies_moved_then_removed_leave_no_leaf() {
+    let mut world = World::new();
+    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
+    let at = |x: f32| Pose::new(Vec3::X * x, Quat::IDENTITY);
+    let a = world.add_body(BodyDesc::new(cube.clone(), at(0.0))).unwrap();
+    let b = world.add_body(BodyDesc::new(cube.clone(), at(0.9))).unwrap();
+    world.update();
+    assert_eq!(touching_of(&world), BTreeSet::from([(a.index(), b.index())]));
+    world.set_poses(&[a, b], &[at(0.1), at(0.8)]).unwrap();
+    world.remove_body(b).unwrap();
+    assert_eq!(world.update().tree_candidates, 0, "the removed body left a leaf");
+    let ended: Vec<_> = world.events().iter().map(|e| (e.kind, e.a, e.b)).collect();
+    assert_eq!(ended, vec![(EventKind::Ended, a, b)]);
+    // Moved, removed, and its slot taken again before the update.
+    world.set_pose(a, at(0.2)).unwrap();
+    let c = world.add_body(BodyDesc::new(cube.clone(), at(5.0))).unwrap();
+    world.set_pose(c, at(5.5)).unwrap();
+    world.remove_body(c).unwrap();
+    let d = world.add_body(BodyDesc::new(cube, at(1.0))).unwrap();
+    assert_eq!(d.index(), b.index());
+    assert_eq!(world.update().tree_candidates, 1);
+    assert_eq!(touching_of(&world), BTreeSet::from([(a.index(), d.index())]));
+}
+
 #[test]
 fn obj_files_load_or_give_typed_errors_naming_the_file() {
     for name in ["teapot", "airplane", "bunny", "wuson", "duck"] {
