@@ -204,7 +204,8 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     let (ball, witnessed) = (centre_b - centre_a, witness - centre_a);
     let (ball_length, witnessed_length) = (ball.length(), witnessed.length());
     let mut best: Option<EdgeQuery> = None;
-    let mut start: Option<u32> = None; // B's support point against the last arc's start
+    // B's support point against the last arc's start, and the point in A's space.
+    let mut start: Option<(u32, DVec3)> = None;
     let slack = SUPPORT_SLACK * a.size().max(b.size());
     let beaten = |cap: &Cap, inner: f64, bar: f64| {
         cap.max(witnessed, witnessed_length) - inner <= bar
@@ -230,21 +231,24 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             // The last arc's support point is a point of B too, and low
             // along the arcs near that arc: it often rules this one out
             // before any climb.
-            if let Some(s) = start
-                && arc.max(rel.apply(b.vertex(s)) - tail) <= bar
-            {
+            if start.is_some_and(|(_, p)| arc.max(p - tail) <= bar) {
                 continue;
             }
             // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
             // starts at B's support point against n1, climbed from the last.
             let (n1, n2) = arc.ends;
             let (d1, d2) = (rel.unrotate(n1), rel.unrotate(n2));
-            let v0 = b.support_min(d1, start.unwrap_or_else(|| b.seed(d1)), f64::NEG_INFINITY).0;
-            start = Some(v0);
+            let from = start.map_or_else(|| b.seed(d1), |(v, _)| v);
+            let v0 = b.support_min(d1, from, f64::NEG_INFINITY).0;
             // That support point is a point of B, exact at the arc's start: a
-            // tighter witness than the centre line's, before any step is walked.
-            if arc.max(rel.apply(b.vertex(v0)) - tail) <= bar {
-                continue;
+            // tighter witness than the centre line's, before any step is
+            // walked. A climb that stayed put is at the point tried above.
+            if start.is_none_or(|(v, _)| v != v0) {
+                let p0 = rel.apply(b.vertex(v0));
+                start = Some((v0, p0));
+                if arc.max(p0 - tail) <= bar {
+                    continue;
+                }
             }
             let dir_a = a.vertex(ta.head(h)) - tail;
             let (mut v, mut t) = (v0, 0.0);
