@@ -190,7 +190,7 @@ impl World {
                 }
             }
         }
-        // A pass over every slot, only when some may have been freed.
+        // A pass over the moved slots, only when one may have been freed.
         if std::mem::take(&mut b.removed) {
             dirty.retain(|&s| b.shapes[s as usize].is_some());
         }

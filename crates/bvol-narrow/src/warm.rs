@@ -1,5 +1,6 @@
-//! The per-pair cache of the feature that decided the last call, re-tested
-//! first on the next: a pair that was apart along an axis mostly still is.
+//! The per-pair cache of the last call: the gap a pair that was apart had,
+//! bounded first from the bodies' motion alone, then the feature that decided
+//! the call, re-tested: a pair that was apart along an axis mostly still is.
 
 use bvol_volumes::Pose;
 use glam::{DVec3, Quat, Vec3};
