@@ -149,24 +149,25 @@ pub(crate) fn box_queries(
     // Gaps are ranked by their signed squares over `|l|^2`, cross-multiplied:
     // no root or division until the winner.
     let (m, abs_m) = (m.map(|r| r.to_array()), abs_rows.map(|r| r.to_array()));
-    let mut edge: Option<(usize, usize, f64, f64)> = None; // i, j, gap, |l|^2
+    // The best so far as (i, j, gap, signed square, |l|^2), chosen by
+    // selects rather than branches: which pair wins is data, and a
+    // mispredicted branch per pair cost more than the nine comparisons.
+    let mut best = (0, 0, 0.0, f64::NEG_INFINITY, 1.0);
     for (i, abs_row) in abs_m.iter().enumerate() {
         let (i1, i2) = ((i + 1) % 3, (i + 2) % 3);
         for (j, (&r1, &r2)) in m[i1].iter().zip(&m[i2]).enumerate() {
             let (j1, j2) = ((j + 1) % 3, (j + 2) % 3);
             let len2 = r1 * r1 + r2 * r2;
-            if len2 <= PARALLEL_SINE * PARALLEL_SINE {
-                continue;
-            }
             let along = r1 * t3[i2] - r2 * t3[i1];
             let reach_a = ha3[i1] * r2.abs() + ha3[i2] * r1.abs();
             let reach_b = hb3[j1] * abs_row[j2] + hb3[j2] * abs_row[j1];
             let gap = along.abs() - reach_a - reach_b;
-            if edge.is_none_or(|(_, _, g, l)| gap * gap.abs() * l > g * g.abs() * len2) {
-                edge = Some((i, j, gap, len2));
-            }
+            let square = gap * gap.abs();
+            let better = len2 > PARALLEL_SINE * PARALLEL_SINE && square * best.4 > best.3 * len2;
+            best = if better { (i, j, gap, square, len2) } else { best };
         }
     }
+    let edge = (best.3 > f64::NEG_INFINITY).then_some((best.0, best.1, best.2, best.4));
     let face =
         |features: &BoxNumbering, i: usize, along: f64| features.face[i][usize::from(along < 0.0)];
     // The other box's lowest corner against a face's normal `n` (in its space).
