@@ -270,11 +270,29 @@ impl World {
                 bodies.collide(*a, *b, state)
             })
             .collect_into_vec(contacts);
+        // Pairs no longer candidates that touched have ended, unless both
+        // bodies rest: a pile that falls asleep keeps its contacts, unchanged
+        // and unreported, until one of them moves again.
+        let kinds = &self.bodies.kinds;
+        let resting = |(a, b): (u32, u32)| {
+            kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
+        };
+        let (kept, ended): (PairStates, PairStates) = left
+            .into_iter()
+            .filter(|(_, state)| state.touching)
+            .partition(|&(key, _)| resting(key));
         let mut events = std::mem::take(&mut self.events);
         events.clear();
+        let orphans = !self.orphaned.is_empty();
         events.append(&mut self.orphaned);
+        // The ended pairs are sorted as the candidates are: merged in as the
+        // events are written, the events come out sorted with no sort (the
+        // stable sort that merged them in moved every event: 90 000 a frame
+        // on 100 000 cubes; the touching stage took about 0.6 ms longer).
+        let mut ended = ended.into_iter().map(|(key, _)| key).peekable();
+        let end = |(a, b): (u32, u32)| ContactEvent::ended(self.id_of(a), self.id_of(b));
         let mut touching = 0;
-        for (&mut ((a, b), ref mut state), &contact) in next.iter_mut().zip(contacts.iter()) {
+        for (&mut (key, ref mut state), &contact) in next.iter_mut().zip(contacts.iter()) {
             let was = state.touching;
             state.touching = contact.is_some();
             touching += usize::from(state.touching);
@@ -285,29 +303,22 @@ impl World {
                 (false, false) => None,
             };
             if let Some(kind) = kind {
+                while let Some(gone) = ended.next_if(|&k| k < key) {
+                    events.push(end(gone));
+                }
+                let (a, b) = key;
                 events.push(ContactEvent { kind, a: self.id_of(a), b: self.id_of(b), contact });
             }
         }
-        // Pairs no longer candidates that touched have ended, unless both
-        // bodies rest: a pile that falls asleep keeps its contacts, unchanged
-        // and unreported, until one of them moves again.
-        let kinds = &self.bodies.kinds;
-        let resting = |(a, b): (u32, u32)| {
-            kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
-        };
-        let before = next.len();
-        for (key, state) in left.into_iter().filter(|(_, state)| state.touching) {
-            if resting(key) {
-                next.push((key, state));
-            } else {
-                events.push(ContactEvent::ended(self.id_of(key.0), self.id_of(key.1)));
-            }
-        }
-        if next.len() > before {
+        events.extend(ended.map(end));
+        if !kept.is_empty() {
             // Two sorted runs: the stable sort merges them in one pass.
+            next.extend(kept);
             next.sort_by_key(|&(key, _)| key);
         }
-        events.sort_by_key(|e| (e.a.index, e.b.index));
+        if orphans {
+            events.sort_by_key(|e| (e.a.index, e.b.index));
+        }
         self.pairs = next;
         self.events = events;
         touching

@@ -199,6 +199,9 @@ fn touching_pairs_equal_brute_force_every_frame() {
             assert_eq!(kinds(EventKind::Began), &now - &before);
             assert_eq!(kinds(EventKind::Ended), &before - &now);
             assert_eq!(kinds(EventKind::Persisting), &now & &before);
+            // Ordered by the bodies' slots, as documented, each pair once.
+            let keys: Vec<_> = world.events().iter().map(|e| (e.a.index(), e.b.index())).collect();
+            assert!(keys.is_sorted_by(|x, y| x < y), "n = {n}: events out of order");
             total += now.len();
             before = now;
             step(&mut world, &ids, &mut rng);
