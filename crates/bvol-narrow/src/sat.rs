@@ -351,9 +351,15 @@ pub(crate) fn centre_axis<A: Convex, B: Convex>(
     rel: &Frame,
     starts: Option<(u32, u32)>,
 ) -> Option<AxisGap> {
-    let axis = (rel.apply(b.inner_ball().0) - a.inner_ball().0).try_normalize()?;
+    let axis = centre_line(a, b, rel)?;
     let (start_a, start_b) = starts.unwrap_or_else(|| (a.seed(-axis), b.seed(rel.unrotate(axis))));
     Some(axis_gap(a, b, rel, axis, start_a, start_b))
+}
+
+/// The unit direction from A's inner centre to B's, in A's space; `None`
+/// for concentric shapes.
+pub(crate) fn centre_line<A: Convex, B: Convex>(a: &A, b: &B, rel: &Frame) -> Option<DVec3> {
+    (rel.apply(b.inner_ball().0) - a.inner_ball().0).try_normalize()
 }
 
 /// The separation of edge `(pb, pb + eb)` beyond edge `(pa, pa + ea)` along
