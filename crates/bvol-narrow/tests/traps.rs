@@ -738,6 +738,37 @@ fn warm_start_of_other_shapes_is_ignored() {
     }
 }
 
+/// A warm start that caches one of two faces tied for the least
+/// penetration gives the face a cold call gives, not its own: a box pressed
+/// into a hull's vertical edge, square to it, is as deep through the hull's
+/// +x face as through its +y face (the same numbers either way). Shifted a
+/// little off the tie, each side picks one face, and each of those warm
+/// starts is then used at the tie; one of them holds the face a cold call
+/// does not pick there.
+#[test]
+fn warm_start_on_tied_faces_gives_the_cold_face() {
+    // A box with a point above its top, so not a box to the closed-form
+    // queries: its side faces are still exactly x = +-1 and y = +-1.
+    let mut points = corners(Vec3::ONE);
+    points.push(Vec3::new(0.0, 0.0, 1.5));
+    let hull = Polyhedron::from_points(&points).expect("a solid");
+    let cube = Polyhedron::cuboid(Vec3::splat(0.5)).expect("a box");
+    let tie = at(1.3, 1.3, 0.0);
+    let cold = hull_hull(&hull, &Pose::IDENTITY, &cube, &tie, &mut WarmStart::default());
+    let cold = cold.expect("finite");
+    let normal = contact(&cold, "at the tie").normal;
+    assert!(normal == Vec3::X || normal == Vec3::Y, "{normal}: not one of the tied faces");
+    let mut cached = Vec::new();
+    for off_tie in [at(1.3, 1.25, 0.0), at(1.25, 1.3, 0.0)] {
+        let mut warm = WarmStart::default();
+        let off = hull_hull(&hull, &Pose::IDENTITY, &cube, &off_tie, &mut warm).expect("finite");
+        cached.push(contact(&off, "off the tie").normal);
+        let got = hull_hull(&hull, &Pose::IDENTITY, &cube, &tie, &mut warm).expect("finite");
+        assert_eq!(got, cold, "with the warm start from {off_tie:?}");
+    }
+    assert_eq!(cached, [Vec3::X, Vec3::Y], "each side off the tie picks its own face");
+}
+
 /// How far any vertex of the points' hull can have moved from pose `then`
 /// to `now`: the origin's move, plus the chord that the farthest vertex from
 /// the origin sweeps through the angle between the rotations.
