@@ -721,6 +721,7 @@ fn warm_start_never_changes_the_answer() {
 /// far apart leave a large gap in the cache, and two large boxes at the same
 /// poses, overlapping, are still found touching (the gap measured is the
 /// small boxes', and no motion since would bound the large ones' by it).
+/// Clones of the small boxes are the same shapes, and the cache answers.
 #[test]
 fn warm_start_of_other_shapes_is_ignored() {
     let small = Polyhedron::from_points(&corners(Vec3::splat(0.5))).expect("a box");
@@ -736,6 +737,18 @@ fn warm_start_of_other_shapes_is_ignored() {
         assert_eq!(got, cold.expect("finite"));
         assert!(got.is_touching());
     }
+    // A clone is the same shape: its cache answers for it, from the motion
+    // bound alone (nothing moved): the same axis, and the gap less what
+    // storing it rounded off, so a little below the gap measured.
+    let twin = small.clone();
+    let again = hull_hull(&twin, &poses[0], &twin, &poses[1], &mut warm).expect("finite");
+    let (Collision::Separated { axis: a0, distance: d0 }, Collision::Separated { axis, distance }) =
+        (far, again)
+    else {
+        panic!("apart: {far:?}, {again:?}");
+    };
+    assert_eq!(axis, a0);
+    assert!(distance < d0 && distance > d0 - 1e-5, "{distance} for {d0}: not the bound's");
 }
 
 /// A warm start that caches one of two faces tied for the least
