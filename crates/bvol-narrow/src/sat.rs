@@ -255,10 +255,16 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             for _ in 0..tb.vertex_count() {
                 let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
                 let (pb, eb) = (rel.apply(b.vertex(v)), rel.rotate(b.vertex(w) - b.vertex(v)));
-                let beats = |s: f64| best.is_none_or(|q| s > q.separation);
+                // Only a pair that can beat the bar (the best so far, and
+                // the floor) is measured again from support points: a pair
+                // below the floor is never picked, so none is kept (each
+                // measure is two hill climbs; keeping the best below the
+                // floor took about three a touching query).
+                let bar = best.map_or(floor, |q| q.separation.max(floor));
+                let beats = |s: f64| s > bar;
                 let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
                     .filter(|&(s, axis)| {
-                        axis.dot(arc.cap.axis) >= arc.cap.cos - ARC_SLACK && beats(s)
+                        axis.dot(arc.cap.axis) >= arc.cap.cos - ARC_SLACK && beats(s + slack)
                     })
                     // A new best is measured again from both shapes' true
                     // support points: the edges are those only if the
