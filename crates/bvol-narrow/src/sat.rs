@@ -104,8 +104,9 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 /// reference's inner centre `c_R` behind it). Only faces whose bounds beat
 /// the best so far (and the floor) are searched, each from the previous
 /// one's support point, and a search stops at the first vertex of the other
-/// shape low enough to show that its face cannot beat them (most stop at
-/// their first vertex).
+/// shape low enough to show that its face cannot beat them. Most would stop
+/// at that first vertex, so its distance is a face's third bound, tested
+/// before the search is set up.
 pub(crate) fn face_query<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
@@ -123,6 +124,11 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
     let mut best =
         face_separation(reference, other, rel, first, other.seed(dir), f64::NEG_INFINITY);
     let mut start = best.support;
+    // That vertex in the reference's space: a point of the other shape too,
+    // so its distance bounds a face's separation as the witness's does. A
+    // face's search starts there and stops at once when that bound holds,
+    // as most do; testing it here first spares the search's setup.
+    let mut start_point = rel.apply(other.vertex(start));
     for cluster in reference.face_clusters() {
         let bar = best.separation.max(floor);
         if cluster.is_group()
@@ -139,12 +145,16 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
                 || best.separation > 0.0
                 || plane.distance(witness) <= bar
                 || plane.distance(centre) - radius <= bar
+                || plane.distance(start_point) <= bar
             {
                 continue;
             }
             // Only a face beating the bar is searched to the end.
             let q = face_separation(reference, other, rel, f, start, bar);
-            start = q.support;
+            if q.support != start {
+                start = q.support;
+                start_point = rel.apply(other.vertex(start));
+            }
             if q.separation > bar {
                 best = q;
             }
