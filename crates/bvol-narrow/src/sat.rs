@@ -191,10 +191,11 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
 /// along the arc, and the arc lies in its cap, so `cap max of (c_B - c_A) -
 /// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too; and
 /// the same with a cluster's cap and depth bound a whole cluster of arcs (a
-/// lone arc's own bounds are tighter, so its cluster's are not tested). Then
-/// the last arc's support point, a point of B low along the arcs near that
-/// one, is a witness before any climb (it spares most climbs of a cold
-/// touching pair: 27 to 8 per edge query on the narrow bench). Last, before
+/// lone arc's own bounds are tighter, so its cluster's are not tested). Of
+/// the arc's own bounds, the last arc's support point, a point of B low
+/// along the arcs near that one, goes first (it spares most climbs of a cold
+/// touching pair: 27 to 8 per edge query on the narrow bench; tested before
+/// the witness's and the ball's, cold touching pairs took 3.5% less). Last, before
 /// any step is walked, B's support point against `n1`, where the walk
 /// starts, is a witness exact at one end of the arc.
 ///
@@ -235,13 +236,13 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             let arc = a.arc(e);
             let h = ta.edges[e as usize];
             let tail = a.vertex(ta.half_edge(h).origin);
-            if arc.max(witness - tail) <= bar || arc.max(centre_b - tail) - radius_b <= bar {
-                continue;
-            }
             // The last arc's support point is a point of B too, and low
             // along the arcs near that arc: it often rules this one out
             // before any climb.
             if start.is_some_and(|(_, p)| arc.max(p - tail) <= bar) {
+                continue;
+            }
+            if arc.max(witness - tail) <= bar || arc.max(centre_b - tail) - radius_b <= bar {
                 continue;
             }
             // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
