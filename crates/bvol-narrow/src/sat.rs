@@ -105,8 +105,8 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 /// the best so far (and the floor) are searched, each from the previous
 /// one's support point, and a search stops at the first vertex of the other
 /// shape low enough to show that its face cannot beat them. Most would stop
-/// at that first vertex, so its distance is a face's third bound, tested
-/// before the search is set up.
+/// at that first vertex, so its distance is a face's first bound, tested
+/// before the witness's and the ball's and before the search is set up.
 pub(crate) fn face_query<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
@@ -143,9 +143,9 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
             let plane = reference.plane(f);
             if f == first
                 || best.separation > 0.0
+                || plane.distance(start_point) <= bar
                 || plane.distance(witness) <= bar
                 || plane.distance(centre) - radius <= bar
-                || plane.distance(start_point) <= bar
             {
                 continue;
             }
