@@ -259,15 +259,14 @@ impl Walker {
     /// one thread this walker descends the halves in turn.
     fn descend<B: Bound>(&mut self, s: &Search<B>) {
         while self.now.len > 0 {
-            if self.now.len > SPLIT && one_thread() {
-                let (left, right) = self.now.items[..self.now.len].split_at(self.now.len / 2);
-                let (left, right) = (left.to_vec(), right.to_vec());
-                self.run(s, &left);
-                self.run(s, &right);
-                return;
-            }
             if self.now.len > SPLIT {
                 let (left, right) = self.now.items[..self.now.len].split_at(self.now.len / 2);
+                if one_thread() {
+                    let (left, right) = (left.to_vec(), right.to_vec());
+                    self.run(s, &left);
+                    self.run(s, &right);
+                    return;
+                }
                 let half = |visits: &[Visit]| {
                     with_walker(|walker| {
                         walker.run(s, visits);
