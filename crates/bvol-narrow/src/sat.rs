@@ -218,17 +218,19 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     // B's support point against the last arc's start, and the point in A's space.
     let mut start: Option<(u32, DVec3)> = None;
     let slack = SUPPORT_SLACK * a.size().max(b.size());
+    // The bar a pair must beat: the best so far, and the floor.
+    let bar_of = |best: Option<EdgeQuery>| best.map_or(floor, |q| q.separation.max(floor));
     let beaten = |cap: &Cap, inner: f64, bar: f64| {
         cap.max(witnessed, witnessed_length) - inner <= bar
             || cap.max(ball, ball_length) - inner - radius_b <= bar
     };
     for cluster in a.edge_clusters() {
-        let bar = best.map_or(floor, |q| q.separation.max(floor));
+        let bar = bar_of(best);
         if cluster.is_group() && beaten(&cluster.cap, cluster.inner, bar) {
             continue;
         }
         for e in cluster.members {
-            let bar = best.map_or(floor, |q| q.separation.max(floor));
+            let bar = bar_of(best);
             let (cap, inner) = a.arc_cap(e);
             if beaten(&cap, inner, bar) {
                 continue;
@@ -271,7 +273,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
                 // below the floor is never picked, so none is kept (each
                 // measure is two hill climbs; keeping the best below the
                 // floor took about three a touching query).
-                let bar = best.map_or(floor, |q| q.separation.max(floor));
+                let bar = bar_of(best);
                 let beats = |s: f64| s > bar;
                 let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
                     .filter(|&(s, axis)| {
