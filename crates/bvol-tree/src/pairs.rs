@@ -36,17 +36,36 @@ const TASKS: usize = 512;
 const SPLIT: usize = 4096;
 
 /// A pair of internal nodes to visit, `x` in the first tree and `y` in the
-/// second: the children of `x` selected by bits 0-1 of `mask` against the
-/// children of `y` selected by bits 2-3.
+/// second, and which of their children take part: each a node index (below
+/// 2^28, as ids are, and so node counts) with two selection bits above it,
+/// bit 30 for side 0 and bit 31 for side 1: eight bytes where a separate mask
+/// made twelve, and every visit writes four of them, kept or not. (Packed
+/// into one `u64`, the search was 5% slower: the shifts cost more than the
+/// store they save.)
 #[derive(Clone, Copy, Debug, Default)]
 struct Visit {
     x: u32,
     y: u32,
-    mask: u8,
 }
 
-/// Both children of both nodes.
-const ALL: u8 = 0b1111;
+/// The selection bits of a visit's side: both children.
+const BOTH: u32 = 0b11 << SELECT;
+/// Where a side's selection bits start.
+const SELECT: u32 = 30;
+
+impl Visit {
+    /// The node index of a side.
+    #[inline(always)]
+    fn node(side: u32) -> u32 {
+        side & ((1 << SELECT) - 1)
+    }
+
+    /// Whether child `i` of a side takes part.
+    #[inline(always)]
+    fn selects(side: u32, i: usize) -> bool {
+        side >> (SELECT as usize + i) & 1 != 0
+    }
+}
 
 /// A pair search over one tree (`a` and `b` the same nodes, pairs reported
 /// `(min, max)` and each once) or two (`(id in a, id in b)`).
@@ -129,7 +148,7 @@ impl<B: Bound> Tree<B> {
             }
         }
         let search = Search { a: &self.nodes, b: &other.nodes, same: false };
-        let first = Visit { x: self.root.index(), y: other.root.index(), mask: ALL };
+        let first = Visit { x: self.root.index() | BOTH, y: other.root.index() | BOTH };
         let (visits, head) = with_walker(|walker| {
             let visits = walker.expand(&search, first, TASKS);
             (visits, walker.take())
@@ -146,6 +165,32 @@ impl<B: Bound> Tree<B> {
         out.extend_from_slice(&head);
         concat(parts, &mut out);
         out
+    }
+}
+
+/// What each child of a visited node leads to: its id or index, whether it
+/// is a leaf, and the side of a visit it makes (a node with both its
+/// children selected, or a leaf's parent with the leaf's side alone).
+struct Lead {
+    id: [u32; 2],
+    leaf: [bool; 2],
+    visit: [u32; 2],
+}
+
+impl Lead {
+    /// The leads of the children of node `n`, at `index`.
+    #[inline(always)]
+    fn of<B: Bound>(n: &Node<B>, index: u32) -> Lead {
+        debug_assert!(index < 1 << SELECT);
+        let side = |i: usize| {
+            let c = n.child[i];
+            if c.is_node() { c.index() | BOTH } else { index | 1 << (SELECT as usize + i) }
+        };
+        Lead {
+            id: [n.child[0].index(), n.child[1].index()],
+            leaf: [n.child[0].is_leaf(), n.child[1].is_leaf()],
+            visit: [side(0), side(1)],
+        }
     }
 }
 
@@ -315,37 +360,47 @@ impl Walker {
         pending
     }
 
-    /// One visit: the selected children of `x` against those of `y`.
+    /// One visit: the selected children of `x` against those of `y`. The
+    /// nodes are copied in and each child's lead worked out once, and the
+    /// four outcomes go to fixed windows of the output and the next level
+    /// (one bounds check each, not one a push).
     #[inline(always)]
     fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
-        let (na, nb) = (&s.a[v.x as usize], &s.b[v.y as usize]);
-        for i in 0..2 {
-            for j in 0..2 {
-                let selected = (v.mask >> i) & (v.mask >> (2 + j)) & 1 != 0;
-                let hit = selected & na.bounds[i].overlaps(&nb.bounds[j]);
-                self.cross(s, (v.x, na, i), (v.y, nb, j), hit);
-            }
+        let (x, y) = (Visit::node(v.x), Visit::node(v.y));
+        let (na, nb) = (s.a[x as usize], s.b[y as usize]);
+        let (la, lb) = (Lead::of(&na, x), Lead::of(&nb, y));
+        let mut hits = [false; 4];
+        for (k, hit) in hits.iter_mut().enumerate() {
+            let (i, j) = (k >> 1, k & 1);
+            let selected = Visit::selects(v.x, i) & Visit::selects(v.y, j);
+            *hit = selected & na.bounds[i].overlaps(&nb.bounds[j]);
         }
+        self.file(s, (&la, &lb), hits);
     }
 
-    /// Files child `i` of node `x` against child `j` of node `y` when `hit`
-    /// (their bounds overlap): two leaves are reported; a leaf against a
-    /// subtree becomes a visit of the leaf's parent with only the leaf's side
-    /// selected; two subtrees a visit of both. Branch-free.
+    /// Files the outcomes `hits` of children `i` of one node against
+    /// children `j` of another (index `2 i + j`): two leaves are reported; a
+    /// leaf against a subtree becomes a visit of the leaf's parent with only
+    /// the leaf's side selected; two subtrees a visit of both. Branch-free:
+    /// every outcome is written, the lengths advanced by the verdicts.
     #[inline(always)]
-    fn cross<B: Bound>(
-        &mut self,
-        s: &Search<B>,
-        (x, na, i): (u32, &Node<B>, usize),
-        (y, nb, j): (u32, &Node<B>, usize),
-        hit: bool,
-    ) {
-        let (ci, cj) = (na.child[i], nb.child[j]);
-        let (vx, mx) = if ci.is_node() { (ci.index(), 0b11) } else { (x, 1 << i) };
-        let (vy, my) = if cj.is_node() { (cj.index(), 0b11) } else { (y, 1 << j) };
-        let leaves = ci.is_leaf() & cj.is_leaf();
-        self.out.push_if(s.pair(ci.index(), cj.index()), hit & leaves);
-        self.next.push_if(Visit { x: vx, y: vy, mask: mx | my << 2 }, hit & !leaves);
+    fn file<B: Bound>(&mut self, s: &Search<B>, (la, lb): (&Lead, &Lead), hits: [bool; 4]) {
+        let (next_len, out_len) = (self.next.len, self.out.len);
+        let next: &mut [Visit; 4] =
+            (&mut self.next.items[next_len..next_len + 4]).try_into().unwrap();
+        let out: &mut [(u32, u32); 4] =
+            (&mut self.out.items[out_len..out_len + 4]).try_into().unwrap();
+        let (mut visits, mut pairs) = (0, 0);
+        for (k, &hit) in hits.iter().enumerate() {
+            let (i, j) = (k >> 1, k & 1);
+            let leaves = la.leaf[i] & lb.leaf[j];
+            out[pairs & 3] = s.pair(la.id[i], lb.id[j]);
+            pairs += usize::from(hit & leaves);
+            next[visits & 3] = Visit { x: la.visit[i], y: lb.visit[j] };
+            visits += usize::from(hit & !leaves);
+        }
+        self.next.len += visits;
+        self.out.len += pairs;
     }
 
     /// Every pair within one tree whose lowest common ancestor is one of the
@@ -353,14 +408,17 @@ impl Walker {
     /// then the levels below.
     fn siblings<B: Bound>(&mut self, s: &Search<B>, nodes: std::ops::Range<usize>) {
         self.next.len = 0;
-        self.next.reserve(nodes.len());
-        self.out.reserve(nodes.len());
+        // Each node's outcome is filed through windows of four.
+        self.next.reserve(nodes.len() + 4);
+        self.out.reserve(nodes.len() + 4);
         for x in nodes.rev() {
             let n = &s.a[x];
             // Free nodes have no second child.
             if n.child[1] != Ref::NONE {
+                let lead = Lead::of(n, x as u32);
+                // Child 0 against child 1 only: the outcome at index 1.
                 let hit = n.bounds[0].overlaps(&n.bounds[1]);
-                self.cross(s, (x as u32, n, 0), (x as u32, n, 1), hit);
+                self.file(s, (&lead, &lead), [false, hit, false, false]);
             }
         }
         std::mem::swap(&mut self.now, &mut self.next);
