@@ -188,7 +188,7 @@ impl Lead {
         };
         Lead {
             id: [n.child[0].index(), n.child[1].index()],
-            leaf: [n.child[0].is_leaf(), n.child[1].is_leaf()],
+            leaf: [!n.child[0].is_node(), !n.child[1].is_node()],
             visit: [side(0), side(1)],
         }
     }
