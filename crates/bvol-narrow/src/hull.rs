@@ -209,13 +209,13 @@ fn full_query<A: Convex, B: Convex>(
     // else along the centre line, are the witnesses of the bounds.
     let w = cached.unwrap_or(c);
     let floor = c.gap.max(w.gap) - 2.0 * slack;
-    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b);
+    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b, cached.is_none());
     if face_a.separation > 0.0 {
         return pair.separated(Choice::FaceA(face_a));
     }
     let first_b = b.face_seed(-rel.unrotate(c.axis));
     let floor_b = floor.max(face_a.separation);
-    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(w.high_a));
+    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(w.high_a), cached.is_none());
     if face_b.separation > 0.0 {
         return pair.separated(Choice::FaceB(face_b));
     }
