@@ -220,7 +220,7 @@ fn full_query<A: Convex, B: Convex>(
         return pair.separated(Choice::FaceB(face_b));
     }
     let deepest_face = face_a.separation.max(face_b.separation);
-    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b);
+    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b, cached.is_none());
     if let Some(e) = edge.filter(|e| e.separation > 0.0) {
         return pair.separated(Choice::Edges(e));
     }

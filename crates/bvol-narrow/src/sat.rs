@@ -265,6 +265,11 @@ fn runs(items: std::ops::Range<u32>) -> impl Iterator<Item = std::ops::Range<u32
 /// any step is walked, B's support point against `n1`, where the walk
 /// starts, is a witness exact at one end of the arc.
 ///
+/// A `cold` query takes the two cap bounds of a run of up to 64 arcs
+/// without a branch, as a bit mask of the arcs left, as the face query does
+/// (cold touching pairs of the narrow bench -6%; warm calls, whose branches
+/// are trained, keep a branch an arc: with the masks they were slower).
+///
 /// [`Arc::max`]: crate::convex::Arc::max
 /// [`Arc::inner`]: crate::convex::Arc::inner
 pub(crate) fn edge_query<A: Convex, B: Convex>(
@@ -273,6 +278,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     rel: &Frame,
     floor: f64,
     witness: DVec3,
+    cold: bool,
 ) -> Option<EdgeQuery> {
     let (ta, tb) = (a.topology(), b.topology());
     let centre_a = a.inner_ball().0;
@@ -290,78 +296,105 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
         cap.max(witnessed, witnessed_length) - inner <= bar
             || cap.max(ball, ball_length) - inner - radius_b <= bar
     };
+    // One arc of A past its cap bounds: its own bounds, then the walk.
+    // True when a separating pair was found (the query stops there).
+    let arc_step = |e: u32, best: &mut Option<EdgeQuery>, start: &mut Option<(u32, DVec3)>| {
+        let bar = bar_of(*best);
+        let arc = a.arc(e);
+        let h = ta.edges[e as usize];
+        let tail = a.vertex(ta.half_edge(h).origin);
+        // The last arc's support point is a point of B too, and low
+        // along the arcs near that arc: it often rules this one out
+        // before any climb.
+        if start.is_some_and(|(_, p)| arc.max(p - tail) <= bar) {
+            return false;
+        }
+        if arc.max(witness - tail) <= bar || arc.max(centre_b - tail) - radius_b <= bar {
+            return false;
+        }
+        // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
+        // starts at B's support point against n1, climbed from the last.
+        let (n1, n2) = arc.ends;
+        let (d1, d2) = (rel.unrotate(n1), rel.unrotate(n2));
+        let from = start.map_or_else(|| b.seed(d1), |(v, _)| v);
+        let v0 = b.support_min(d1, from, f64::NEG_INFINITY).0;
+        // That support point is a point of B, exact at the arc's start: a
+        // tighter witness than the centre line's, before any step is
+        // walked. A climb that stayed put is at the point tried above.
+        if start.is_none_or(|(v, _)| v != v0) {
+            let p0 = rel.apply(b.vertex(v0));
+            *start = Some((v0, p0));
+            if arc.max(p0 - tail) <= bar {
+                return false;
+            }
+        }
+        let dir_a = a.vertex(ta.head(h)) - tail;
+        let (mut v, mut t) = (v0, 0.0);
+        for _ in 0..tb.vertex_count() {
+            let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
+            let (pb, eb) = (rel.apply(b.vertex(v)), rel.rotate(b.vertex(w) - b.vertex(v)));
+            // Only a pair that can beat the bar (the best so far, and
+            // the floor) is measured again from support points: a pair
+            // below the floor is never picked, so none is kept (each
+            // measure is two hill climbs; keeping the best below the
+            // floor took about three a touching query).
+            let bar = bar_of(*best);
+            let beats = |s: f64| s > bar;
+            let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
+                .filter(|&(s, axis)| {
+                    axis.dot(arc.cap.axis) >= arc.cap.cos - ARC_SLACK && beats(s + slack)
+                })
+                // A new best is measured again from both shapes' true
+                // support points: the edges are those only if the
+                // walk was exact, which rounding can spoil for edges
+                // near parallel or faces near coplanar.
+                .and_then(|(s, axis)| {
+                    let gap = axis_gap(a, b, rel, axis, ta.half_edge(h).origin, v).gap;
+                    (gap >= s - slack).then_some((gap, axis))
+                });
+            if let Some((separation, axis)) = found
+                && beats(separation)
+            {
+                *best = Some(EdgeQuery { edge_a: e, half_edge_b: hb, separation, axis });
+                if separation > 0.0 {
+                    return true;
+                }
+            }
+            (v, t) = (w, exit_t);
+        }
+        false
+    };
     for cluster in a.edge_clusters() {
         let bar = bar_of(best);
         if cluster.is_group() && beaten(&cluster.cap, cluster.inner, bar) {
             continue;
         }
-        for e in cluster.members {
+        if !cold {
+            for e in cluster.members {
+                let (cap, inner) = a.arc_cap(e);
+                if !beaten(&cap, inner, bar_of(best)) && arc_step(e, &mut best, &mut start) {
+                    return best;
+                }
+            }
+            continue;
+        }
+        for run in runs(cluster.members) {
+            // Cold, the arcs of a run that the cap bounds leave are found
+            // without a branch an arc, as in the face query.
             let bar = bar_of(best);
-            let (cap, inner) = a.arc_cap(e);
-            if beaten(&cap, inner, bar) {
-                continue;
+            let mut live = 0u64;
+            for (k, e) in (0..).zip(run.clone()) {
+                let (cap, inner) = a.arc_cap(e);
+                let by_witness = cap.max(witnessed, witnessed_length) - inner;
+                let by_ball = cap.max(ball, ball_length) - inner - radius_b;
+                live |= u64::from((by_witness > bar) & (by_ball > bar)) << k;
             }
-            let arc = a.arc(e);
-            let h = ta.edges[e as usize];
-            let tail = a.vertex(ta.half_edge(h).origin);
-            // The last arc's support point is a point of B too, and low
-            // along the arcs near that arc: it often rules this one out
-            // before any climb.
-            if start.is_some_and(|(_, p)| arc.max(p - tail) <= bar) {
-                continue;
-            }
-            if arc.max(witness - tail) <= bar || arc.max(centre_b - tail) - radius_b <= bar {
-                continue;
-            }
-            // The arc d(t) = (1 - t) n1 + t n2, seen from B's space; its walk
-            // starts at B's support point against n1, climbed from the last.
-            let (n1, n2) = arc.ends;
-            let (d1, d2) = (rel.unrotate(n1), rel.unrotate(n2));
-            let from = start.map_or_else(|| b.seed(d1), |(v, _)| v);
-            let v0 = b.support_min(d1, from, f64::NEG_INFINITY).0;
-            // That support point is a point of B, exact at the arc's start: a
-            // tighter witness than the centre line's, before any step is
-            // walked. A climb that stayed put is at the point tried above.
-            if start.is_none_or(|(v, _)| v != v0) {
-                let p0 = rel.apply(b.vertex(v0));
-                start = Some((v0, p0));
-                if arc.max(p0 - tail) <= bar {
-                    continue;
+            while live != 0 {
+                let e = run.start + live.trailing_zeros();
+                live &= live - 1;
+                if arc_step(e, &mut best, &mut start) {
+                    return best;
                 }
-            }
-            let dir_a = a.vertex(ta.head(h)) - tail;
-            let (mut v, mut t) = (v0, 0.0);
-            for _ in 0..tb.vertex_count() {
-                let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
-                let (pb, eb) = (rel.apply(b.vertex(v)), rel.rotate(b.vertex(w) - b.vertex(v)));
-                // Only a pair that can beat the bar (the best so far, and
-                // the floor) is measured again from support points: a pair
-                // below the floor is never picked, so none is kept (each
-                // measure is two hill climbs; keeping the best below the
-                // floor took about three a touching query).
-                let bar = bar_of(best);
-                let beats = |s: f64| s > bar;
-                let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
-                    .filter(|&(s, axis)| {
-                        axis.dot(arc.cap.axis) >= arc.cap.cos - ARC_SLACK && beats(s + slack)
-                    })
-                    // A new best is measured again from both shapes' true
-                    // support points: the edges are those only if the
-                    // walk was exact, which rounding can spoil for edges
-                    // near parallel or faces near coplanar.
-                    .and_then(|(s, axis)| {
-                        let gap = axis_gap(a, b, rel, axis, ta.half_edge(h).origin, v).gap;
-                        (gap >= s - slack).then_some((gap, axis))
-                    });
-                if let Some((separation, axis)) = found
-                    && beats(separation)
-                {
-                    best = Some(EdgeQuery { edge_a: e, half_edge_b: hb, separation, axis });
-                    if separation > 0.0 {
-                        return best;
-                    }
-                }
-                (v, t) = (w, exit_t);
             }
         }
     }
@@ -533,7 +566,7 @@ pub(crate) mod tests {
 
     /// The Gauss-map walk finds the same greatest edge separation as testing
     /// every pair with IsMinkowskiFace, on overlapping random hulls (where no
-    /// early exit cuts either short).
+    /// early exit cuts either short), cold or warm.
     #[test]
     fn edge_walk_matches_every_pair_tested() {
         let mut state = 42;
@@ -552,8 +585,13 @@ pub(crate) mod tests {
                     - 0.5)
                     * 0.6,
             };
-            let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, rel.apply(b.inner_ball().0))
-                .map(|q| q.separation);
+            let witness = rel.apply(b.inner_ball().0);
+            let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, true);
+            // Cold (the cap bounds as masks) and warm (a branch an arc)
+            // find the same pair.
+            let warm = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, false);
+            assert_eq!(walked, warm, "case {case}");
+            let walked = walked.map(|q| q.separation);
             let every = brute_force_edge_query(&a, &b, &rel);
             match (walked, every) {
                 (Some(w), Some(e)) if e <= 0.0 => {
