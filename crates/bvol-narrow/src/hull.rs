@@ -22,6 +22,18 @@ use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 /// shapes' size. A contact's depth is at most this much more than the least.
 const PREFER_ABS: f64 = 2e-5;
 
+/// How deep (along the centre line, relative to the shapes' size) a cold
+/// pair must overlap for its face and edge queries to take their bounds as
+/// bit masks, a run of faces or arcs at a time without a branch each,
+/// instead of one branch an item. Deep, the bounds are weak and which items
+/// they rule out is unpredictable: on the narrow bench's random cold pairs
+/// the masks took 9% off (cold all 1.78 -> 1.62 ms a pass). Near touching,
+/// the first bound rules out most items and the branches are cheap: the
+/// moving pairs, each call cold, were 15% slower with masks for all cold
+/// calls, 6% slower with this depth. Warm calls never take them (+3 to
+/// +7% there).
+const MASK_DEPTH: f64 = 0.25;
+
 /// Whether two convex polyhedra touch, and how.
 ///
 /// The separating-axis test of Gregorius (GDC 2013): the face normals of A,
@@ -209,18 +221,22 @@ fn full_query<A: Convex, B: Convex>(
     // else along the centre line, are the witnesses of the bounds.
     let w = cached.unwrap_or(c);
     let floor = c.gap.max(w.gap) - 2.0 * slack;
-    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b, cached.is_none());
+    // A cold pair sunk deep into each other leaves many faces and arcs to
+    // the bounds, which rule them out by data the branch predictor has not
+    // seen: there the queries take their bounds as masks (see MASK_DEPTH).
+    let masks = cached.is_none() && c.gap < -MASK_DEPTH * a.size().max(b.size());
+    let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b, masks);
     if face_a.separation > 0.0 {
         return pair.separated(Choice::FaceA(face_a));
     }
     let first_b = b.face_seed(-rel.unrotate(c.axis));
     let floor_b = floor.max(face_a.separation);
-    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(w.high_a), cached.is_none());
+    let face_b = face_query(b, a, inv, first_b, floor_b, inv.apply(w.high_a), masks);
     if face_b.separation > 0.0 {
         return pair.separated(Choice::FaceB(face_b));
     }
     let deepest_face = face_a.separation.max(face_b.separation);
-    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b, cached.is_none());
+    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b, masks);
     if let Some(e) = edge.filter(|e| e.separation > 0.0) {
         return pair.separated(Choice::Edges(e));
     }

@@ -108,11 +108,12 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 /// at that first vertex, so its distance is a face's first bound, tested
 /// before the witness's and the ball's and before the search is set up.
 ///
-/// A `cold` query (no cached axis: the witness is the centre line's, and
-/// the pair is new to the branch predictor) takes the three bounds of a run
-/// of up to 64 faces without a branch, as a bit mask of the faces left, then
-/// searches those; a warm one tests each face's bounds in turn, which cost
-/// less when most faces fall to the first. Either way a face that can beat
+/// With `masks` (a cold pair sunk deep: the bounds are weak, and which faces
+/// they rule out is new to the branch predictor; see `MASK_DEPTH` in
+/// `hull.rs`) the query takes the three bounds of a run of up to 64 faces
+/// without a branch, as a bit mask of the faces left, then searches those;
+/// else it tests each face's bounds in turn, which costs less when most
+/// faces fall to the first. Either way a face that can beat
 /// the bar is never ruled out, and faces are taken in the same order, so
 /// the best face is the same (a mask can rule out a face that a later start
 /// point would not have, whose search would only have moved that point).
@@ -123,7 +124,7 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
     first: u32,
     floor: f64,
     witness: DVec3,
-    cold: bool,
+    masks: bool,
 ) -> FaceQuery {
     let (centre, radius) = other.inner_ball();
     let centre = rel.apply(centre);
@@ -148,9 +149,9 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
         {
             continue;
         }
-        if !cold {
-            // Warm, the witness is near the contact and the branches are
-            // trained: each face's bounds are tested in turn, cheapest first.
+        if !masks {
+            // Warm or near touching, most faces fall to the first bound:
+            // each face's bounds are tested in turn, cheapest first.
             for f in cluster.members {
                 let bar = search.bar();
                 let plane = reference.plane(f);
@@ -165,9 +166,9 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
             continue;
         }
         for run in runs(cluster.members) {
-            // Cold, which faces of the run the three bounds leave is found
-            // without a branch a face: which ones they rule out is data,
-            // and the branches mispredicted (cold touching pairs -4%).
+            // Which faces of the run the three bounds leave, found without a
+            // branch a face: which ones they rule out is data, and the
+            // branches mispredicted (cold touching pairs -4%).
             let bar = search.bar();
             let mut live = 0u64;
             for (k, f) in (0..).zip(run.clone()) {
@@ -265,10 +266,9 @@ fn runs(items: std::ops::Range<u32>) -> impl Iterator<Item = std::ops::Range<u32
 /// any step is walked, B's support point against `n1`, where the walk
 /// starts, is a witness exact at one end of the arc.
 ///
-/// A `cold` query takes the two cap bounds of a run of up to 64 arcs
+/// With `masks` the query takes the two cap bounds of a run of up to 64 arcs
 /// without a branch, as a bit mask of the arcs left, as the face query does
-/// (cold touching pairs of the narrow bench -6%; warm calls, whose branches
-/// are trained, keep a branch an arc: with the masks they were slower).
+/// (cold touching pairs of the narrow bench -6%); else a branch an arc.
 ///
 /// [`Arc::max`]: crate::convex::Arc::max
 /// [`Arc::inner`]: crate::convex::Arc::inner
@@ -278,7 +278,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     rel: &Frame,
     floor: f64,
     witness: DVec3,
-    cold: bool,
+    masks: bool,
 ) -> Option<EdgeQuery> {
     let (ta, tb) = (a.topology(), b.topology());
     let centre_a = a.inner_ball().0;
@@ -369,7 +369,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
         if cluster.is_group() && beaten(&cluster.cap, cluster.inner, bar) {
             continue;
         }
-        if !cold {
+        if !masks {
             for e in cluster.members {
                 let (cap, inner) = a.arc_cap(e);
                 if !beaten(&cap, inner, bar_of(best)) && arc_step(e, &mut best, &mut start) {
@@ -379,7 +379,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             continue;
         }
         for run in runs(cluster.members) {
-            // Cold, the arcs of a run that the cap bounds leave are found
+            // The arcs of a run that the cap bounds leave, found
             // without a branch an arc, as in the face query.
             let bar = bar_of(best);
             let mut live = 0u64;
@@ -566,7 +566,7 @@ pub(crate) mod tests {
 
     /// The Gauss-map walk finds the same greatest edge separation as testing
     /// every pair with IsMinkowskiFace, on overlapping random hulls (where no
-    /// early exit cuts either short), cold or warm.
+    /// early exit cuts either short), with the bounds as masks or not.
     #[test]
     fn edge_walk_matches_every_pair_tested() {
         let mut state = 42;
@@ -587,8 +587,7 @@ pub(crate) mod tests {
             };
             let witness = rel.apply(b.inner_ball().0);
             let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, true);
-            // Cold (the cap bounds as masks) and warm (a branch an arc)
-            // find the same pair.
+            // With the cap bounds as masks or a branch an arc, the same pair.
             let warm = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, false);
             assert_eq!(walked, warm, "case {case}");
             let walked = walked.map(|q| q.separation);
