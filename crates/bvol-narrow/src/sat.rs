@@ -156,11 +156,12 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
                 let bar = search.bar();
                 let plane = reference.plane(f);
                 if f != first
+                    && search.best.separation <= 0.0
                     && plane.distance(search.start_point) > bar
                     && plane.distance(witness) > bar
                     && ball_bound(plane) > bar
                 {
-                    search.face(reference, other, rel, f);
+                    search.face(reference, other, rel, f, bar);
                 }
             }
             continue;
@@ -170,19 +171,24 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
             // branch a face: which ones they rule out is data, and the
             // branches mispredicted (cold touching pairs -4%).
             let bar = search.bar();
-            let mut live = 0u64;
-            for (k, f) in (0..).zip(run.clone()) {
+            let live = live_mask(run.clone(), |f| {
                 let plane = reference.plane(f);
                 let least = |a: f64, b: f64| if a < b { a } else { b };
                 let bound = least(
                     least(plane.distance(search.start_point), plane.distance(witness)),
                     ball_bound(plane),
                 );
-                live |= u64::from((bound > bar) & (f != first)) << k;
-            }
-            while live != 0 {
-                search.face(reference, other, rel, run.start + live.trailing_zeros());
-                live &= live - 1;
+                (bound > bar) & (f != first)
+            });
+            for f in set_bits(run.start, live) {
+                // The bar may have risen and the start point moved since
+                // the mask let the face through.
+                let bar = search.bar();
+                if search.best.separation <= 0.0
+                    && reference.plane(f).distance(search.start_point) > bar
+                {
+                    search.face(reference, other, rel, f, bar);
+                }
             }
         }
     }
@@ -205,14 +211,16 @@ impl FaceSearch {
         self.best.separation.max(self.floor)
     }
 
-    /// Searches face `f` unless the start point's bound (the bar may have
-    /// risen and the point moved since the face was let through) or a
-    /// separating best rules it out, and keeps it if it beats the bar.
-    fn face<R: Convex, O: Convex>(&mut self, reference: &R, other: &O, rel: &Frame, f: u32) {
-        let bar = self.bar();
-        if self.best.separation > 0.0 || reference.plane(f).distance(self.start_point) <= bar {
-            return;
-        }
+    /// Searches face `f`, which its bounds have not ruled out, and keeps it
+    /// if it beats `bar` (the current [`FaceSearch::bar`]).
+    fn face<R: Convex, O: Convex>(
+        &mut self,
+        reference: &R,
+        other: &O,
+        rel: &Frame,
+        f: u32,
+        bar: f64,
+    ) {
         // Only a face beating the bar is searched to the end.
         let q = face_separation(reference, other, rel, f, self.start, bar);
         if q.support != self.start {
@@ -228,6 +236,24 @@ impl FaceSearch {
 /// A range of items cut into runs of at most 64, for bit masks.
 fn runs(items: std::ops::Range<u32>) -> impl Iterator<Item = std::ops::Range<u32>> {
     items.clone().step_by(64).map(move |start| start..(start + 64).min(items.end))
+}
+
+/// The items of a run (at most 64) that `keep` holds for, as a bit mask
+/// (bit `k` for item `run.start + k`), found without a branch an item.
+#[inline(always)]
+fn live_mask(run: std::ops::Range<u32>, keep: impl Fn(u32) -> bool) -> u64 {
+    (0..).zip(run).fold(0, |live, (k, item)| live | u64::from(keep(item)) << k)
+}
+
+/// The items whose bits are set in `live`, in order, the first bit being
+/// item `start`.
+#[inline(always)]
+fn set_bits(start: u32, mut live: u64) -> impl Iterator<Item = u32> {
+    std::iter::from_fn(move || {
+        let k = (live != 0).then(|| live.trailing_zeros())?;
+        live &= live - 1;
+        Some(start + k)
+    })
 }
 
 /// The edge pair of A and B with the greatest separation among those whose
@@ -382,16 +408,13 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             // The arcs of a run that the cap bounds leave, found
             // without a branch an arc, as in the face query.
             let bar = bar_of(best);
-            let mut live = 0u64;
-            for (k, e) in (0..).zip(run.clone()) {
+            let live = live_mask(run.clone(), |e| {
                 let (cap, inner) = a.arc_cap(e);
                 let by_witness = cap.max(witnessed, witnessed_length) - inner;
                 let by_ball = cap.max(ball, ball_length) - inner - radius_b;
-                live |= u64::from((by_witness > bar) & (by_ball > bar)) << k;
-            }
-            while live != 0 {
-                let e = run.start + live.trailing_zeros();
-                live &= live - 1;
+                (by_witness > bar) & (by_ball > bar)
+            });
+            for e in set_bits(run.start, live) {
                 if arc_step(e, &mut best, &mut start) {
                     return best;
                 }
