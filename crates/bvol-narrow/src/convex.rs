@@ -1,6 +1,7 @@
 //! What the separating-axis code reads of a convex shape, whether a stored
 //! [`Polyhedron`] or a box made on the spot from its half extents.
 
+use std::ops::Range;
 use std::sync::OnceLock;
 
 use glam::{DVec3, Vec3};
@@ -8,6 +9,7 @@ use glam::{DVec3, Vec3};
 use crate::Polyhedron;
 use crate::box_sat::BoxNumbering;
 use crate::cluster::{Cap, Cluster};
+use crate::lanes::{Witness, lanes_left, live_mask};
 use crate::topology::Topology;
 
 /// A face's plane: `normal . x = offset` on it, `normal` unit and outward.
@@ -113,6 +115,38 @@ pub(crate) trait Convex {
 
     /// The faces grouped by the directions of their normals.
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
+
+    /// The faces of `run` (at most 64) whose planes' distances to all
+    /// `witnesses` (points from the inner centre, less their `less`) leave
+    /// above `bar`, as a bit mask ([`lanes_left`]): every face whose bounds
+    /// beat the bar, and perhaps a few more.
+    fn faces_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        let centre = self.inner_ball().0;
+        live_mask(run, |f| {
+            let plane = self.plane(f);
+            witnesses.iter().all(|w| plane.distance(centre + w.at) - w.less > bar)
+        })
+    }
+
+    /// The arcs of `run` (at most 64) whose cap bounds by all `witnesses`
+    /// leave above `bar`, as a bit mask ([`lanes_left`]): every arc whose
+    /// bounds beat the bar, and perhaps a few more.
+    fn arcs_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        live_mask(run, |e| {
+            let (cap, inner) = self.arc_cap(e);
+            witnesses.iter().all(|w| cap.max(w.at, w.length) - inner - w.less > bar)
+        })
+    }
 
     /// The edges grouped by the directions of their arcs.
     fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
@@ -242,6 +276,26 @@ impl Convex for Polyhedron {
 
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
         self.face_clusters.iter().cloned()
+    }
+
+    /// On f32 lanes, four faces at a time.
+    fn faces_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        lanes_left(&self.face_lanes, run, witnesses, 2.0 * self.size, bar)
+    }
+
+    /// On f32 lanes, four arcs at a time.
+    fn arcs_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        lanes_left(&self.arc_lanes, run, witnesses, 2.0 * self.size, bar)
     }
 
     fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {

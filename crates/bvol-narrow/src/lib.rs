@@ -57,6 +57,7 @@ mod convex;
 mod error;
 mod frame;
 mod hull;
+mod lanes;
 mod manifold;
 mod polyhedron;
 mod sat;

@@ -9,6 +9,7 @@ use crate::ShapeError;
 use crate::box_sat::BoxNumbering;
 use crate::cluster::{Cap, Cluster, group};
 use crate::convex::{Arc, Cuboid, Plane, SEEDS, seed_direction, unit_cube};
+use crate::lanes::CapLanes;
 use crate::topology::Topology;
 
 /// A convex polyhedron in its local space, with what the separating-axis test
@@ -51,6 +52,11 @@ pub struct Polyhedron {
     /// Each arc's cap and depth, apart: the edge query's first bounds read
     /// only these, of every arc.
     pub(crate) arc_caps: Vec<(Cap, f64)>,
+    /// The faces' normals (as caps of no radius) and depths on f32 lanes,
+    /// four a block: the deep cold face queries' first bounds.
+    pub(crate) face_lanes: Vec<CapLanes>,
+    /// The arcs' caps and depths on f32 lanes likewise, for the edge query.
+    pub(crate) arc_lanes: Vec<CapLanes>,
     /// The faces, numbered so that those facing alike are consecutive, in groups.
     pub(crate) face_clusters: Vec<Cluster>,
     /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
@@ -138,6 +144,7 @@ impl Polyhedron {
         let faces: Vec<(Cap, f64)> =
             planes.iter().map(|p| (Cap::new(p.normal, 0.0), -p.distance(centre))).collect();
         let (face_order, face_clusters) = group(&faces);
+        let face_caps: Vec<(Cap, f64)> = face_order.iter().map(|&f| faces[f as usize]).collect();
         let planes: Vec<Plane> = face_order.iter().map(|&f| planes[f as usize]).collect();
         let mut topology = topology.with_face_order(&face_order);
         let arcs: Vec<Arc> = topology
@@ -152,7 +159,7 @@ impl Polyhedron {
             group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
         let arcs: Vec<Arc> = edge_order.iter().map(|&e| arcs[e as usize]).collect();
-        let arc_caps = arcs.iter().map(|a| (a.cap, a.inner)).collect();
+        let arc_caps: Vec<(Cap, f64)> = arcs.iter().map(|a| (a.cap, a.inner)).collect();
         // First on ties, so the grid's centre slot (no direction) holds 0.
         let first_min = |m: (u32, f64), x: (u32, f64)| if x.1 < m.1 { x } else { m };
         let seeds = std::array::from_fn(|slot| {
@@ -178,6 +185,8 @@ impl Polyhedron {
             id: NEXT_ID.fetch_add(1, Ordering::Relaxed),
             inner_ball: (centre, radius.max(0.0)),
             arcs,
+            face_lanes: CapLanes::pack(&face_caps),
+            arc_lanes: CapLanes::pack(&arc_caps),
             arc_caps,
             face_clusters,
             edge_clusters,
