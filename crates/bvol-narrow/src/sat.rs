@@ -564,6 +564,14 @@ pub(crate) mod tests {
         Polyhedron::from_points(&points).expect("a solid cloud")
     }
 
+    /// A random turn, and a shift of up to `reach` / 2 on each axis.
+    fn random_frame(state: &mut u64, reach: f64) -> Frame {
+        let q = DQuat::from_xyzw(next(state), next(state), next(state), next(state))
+            - DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5);
+        let shift = DVec3::new(next(state), next(state), next(state)) - 0.5;
+        Frame { rotation: DMat3::from_quat(q.normalize()), translation: shift * reach }
+    }
+
     /// The Gauss-map walk finds the same greatest edge separation as testing
     /// every pair with IsMinkowskiFace, on overlapping random hulls (where no
     /// early exit cuts either short), with the bounds as masks or not.
@@ -573,18 +581,7 @@ pub(crate) mod tests {
         let mut compared = 0;
         for case in 0..400 {
             let (a, b) = (cloud(&mut state, 4 + case % 40), cloud(&mut state, 4 + case % 23));
-            let q = DQuat::from_xyzw(
-                next(&mut state),
-                next(&mut state),
-                next(&mut state),
-                next(&mut state),
-            ) - DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5);
-            let rel = Frame {
-                rotation: DMat3::from_quat(q.normalize()),
-                translation: (DVec3::new(next(&mut state), next(&mut state), next(&mut state))
-                    - 0.5)
-                    * 0.6,
-            };
+            let rel = random_frame(&mut state, 0.6);
             let witness = rel.apply(b.inner_ball().0);
             let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, true);
             // With the cap bounds as masks or a branch an arc, the same pair.
@@ -615,18 +612,7 @@ pub(crate) mod tests {
         let mut separated = 0;
         for case in 0..400 {
             let (a, b) = (cloud(&mut state, 4 + case % 60), cloud(&mut state, 4 + case % 37));
-            let q = DQuat::from_xyzw(
-                next(&mut state),
-                next(&mut state),
-                next(&mut state),
-                next(&mut state),
-            ) - DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5);
-            let rel = Frame {
-                rotation: DMat3::from_quat(q.normalize()),
-                translation: (DVec3::new(next(&mut state), next(&mut state), next(&mut state))
-                    - 0.5)
-                    * (case % 4) as f64,
-            };
+            let rel = random_frame(&mut state, (case % 4) as f64);
             let witness = rel.apply(b.inner_ball().0);
             let first = (case as u32 * 7) % a.topology().face_count() as u32;
             let query = |masks| face_query(&a, &b, &rel, first, f64::NEG_INFINITY, witness, masks);
