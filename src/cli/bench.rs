@@ -181,13 +181,15 @@ fn print(run: &Run, threads: usize, source: &str, events: bool) {
     };
     let mean =
         if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
+    // The worst frame: where a rebuild or a burst of reinsertions shows.
+    let max = sorted.last().copied().unwrap_or(f64::NAN);
     let avg_pairs = run.pairs as f64 / run.frames as f64;
     let per_body = run.bytes as f64 / run.n.max(1) as f64;
     let mut header = String::from(
-        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body",
+        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body\tmax_ms",
     );
     let mut row = format!(
-        "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}",
+        "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}\t{max:.3}",
         run.n, run.frames, run.build_ms, run.digest
     );
     if events {

@@ -8,7 +8,7 @@ use bvol_volumes::Aabb;
 use glam::Vec3;
 
 use crate::Bound;
-use crate::node::{Node, Ref};
+use crate::node::{NodeOut, Ref};
 
 /// Bins per split. Wald reports 16 to 32 bins within a few percent of a full
 /// sweep; 16 keeps the bins in L1.
@@ -62,14 +62,14 @@ pub(crate) fn size_class<B: Bound>(bound: &B) -> u8 {
 /// nodes and the name of the first, returns the subtree's root and bound.
 pub(crate) trait Expand<B: Bound>: Sync {
     /// Builds `atom`'s subtree into `out`, node `out[i]` named `base + i`.
-    fn expand(&self, atom: &Atom<B>, out: &mut [Node<B>], base: u32) -> (Ref, B);
+    fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, out: &mut [N], base: u32) -> (Ref, B);
 }
 
 /// For builds with no clusters.
 pub(crate) struct NoClusters;
 
 impl<B: Bound> Expand<B> for NoClusters {
-    fn expand(&self, atom: &Atom<B>, _: &mut [Node<B>], _: u32) -> (Ref, B) {
+    fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, _: &mut [N], _: u32) -> (Ref, B) {
         (atom.r, atom.bound)
     }
 }
@@ -77,13 +77,14 @@ impl<B: Bound> Expand<B> for NoClusters {
 /// Builds a tree over `atoms` (total weight at least 2) into `out`, which
 /// must hold exactly `weight - 1` nodes: preorder, `out[0]` the root, node
 /// `out[i]` named `base + i` in child references. Returns the root's bound.
+/// `out` takes whole nodes, or child references alone ([`NodeOut`]).
 ///
 /// Every subtree takes a contiguous run of `out` whose length is fixed by the
 /// weight of its atoms, so the two halves of a split can be built in parallel
 /// and the result is the same whatever the number of threads.
-pub(crate) fn build<B: Bound>(
+pub(crate) fn build<B: Bound, N: NodeOut<B>>(
     atoms: &mut [Atom<B>],
-    out: &mut [Node<B>],
+    out: &mut [N],
     base: u32,
     clusters: &impl Expand<B>,
 ) -> (Ref, B) {
@@ -94,9 +95,9 @@ pub(crate) fn build<B: Bound>(
     }
 }
 
-fn build_at<B: Bound>(
+fn build_at<B: Bound, N: NodeOut<B>>(
     atoms: &mut [Atom<B>],
-    out: &mut [Node<B>],
+    out: &mut [N],
     base: u32,
     depth: u32,
     clusters: &impl Expand<B>,
@@ -107,7 +108,7 @@ fn build_at<B: Bound>(
     let left_weight: u32 = left.iter().map(|a| a.weight).sum();
     let (head, rest) = out.split_at_mut(1);
     let (left_out, right_out) = rest.split_at_mut(left_weight as usize - 1);
-    let sub = |atoms: &mut [Atom<B>], out: &mut [Node<B>], base: u32| match atoms {
+    let sub = |atoms: &mut [Atom<B>], out: &mut [N], base: u32| match atoms {
         [one] if one.weight > 1 => clusters.expand(one, out, base),
         [one] => (one.r, one.bound),
         _ => (Ref::node(base), build_at(atoms, out, base, depth + 1, clusters)),
@@ -118,7 +119,7 @@ fn build_at<B: Bound>(
     } else {
         (sub(left, left_out, base + 1), sub(right, right_out, right_base))
     };
-    head[0] = Node { bounds: [lb, rb], child: [lr, rr] };
+    head[0].set([lb, rb], [lr, rr]);
     lb.merge(&rb)
 }
 

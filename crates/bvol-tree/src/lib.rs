@@ -56,6 +56,7 @@ mod pair_set;
 mod pairs;
 mod query;
 mod rebuild;
+mod staged;
 mod tree;
 mod update;
 mod upkeep;
@@ -86,9 +87,14 @@ pub struct Config {
     /// moved, equal at 0.1%, 4.3 against 2.3 ms at 1%).
     pub refit_fraction: f32,
     /// SAH cost growth, relative to the cost after the last whole build,
-    /// above which [`Tree::update`]'s refit path rebuilds the tree. Default
-    /// 0.3: boxes moving 0.1 of their size per frame trigger a rebuild about
-    /// every 20 frames; 0.1 and 0.2 rebuilt more often for no gain.
+    /// that [`Tree::update`]'s refit path lets the tree reach before it
+    /// rebuilds it. Default 0.3: boxes moving 0.1 of their size per frame
+    /// reach it about every 20 frames; 0.1 and 0.2 rebuilt more often for no
+    /// gain. The rebuild is staged over the next frames, so none pays for
+    /// all of it, and starts at 0.35 of this growth so that it is installed
+    /// about when the tree would have reached it; where leaves teleport so
+    /// often that a staged rebuild would find many placed where they were,
+    /// the tree is rebuilt in one go at this growth.
     pub drift: f64,
     /// Most atoms (leaves and kept subtrees) one [`Tree::optimize`] call
     /// places: the bound on the per-frame upkeep work. Default 4096, about

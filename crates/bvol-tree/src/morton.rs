@@ -10,20 +10,20 @@ use glam::Vec3;
 
 use crate::Bound;
 use crate::build::{Atom, Expand, build};
-use crate::node::{Node, Ref};
+use crate::node::{NodeOut, Ref};
 
 /// Clusters hold at most this many leaves.
 const CLUSTER: usize = 16;
 /// Leaves whose area is at least 2^(this + 1) times the median's are kept
 /// out of the clusters.
-const LARGE_CLASSES: u8 = 4;
+pub(crate) const LARGE_CLASSES: u8 = 4;
 /// Bits per axis of a Morton code (30 bits in all).
 const BITS: u32 = 10;
 
 /// Builds a tree over `leaves` (at least 2, weight 1 each) into `out`, which
 /// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root. Returns
 /// the root's bound. `leaves` is left reordered.
-pub(crate) fn build_morton<B: Bound>(leaves: &mut Vec<Atom<B>>, out: &mut [Node<B>]) -> B {
+pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(leaves: &mut Vec<Atom<B>>, out: &mut [N]) -> B {
     // Leaves far larger than the typical one stay out of the clusters: a
     // cluster holding one would be as large, and so would every node above
     // it. The top-level SAH places them on their own. (On 100 000 boxes, 1%
@@ -61,10 +61,16 @@ fn median_class<B: Bound>(leaves: &[Atom<B>]) -> u8 {
     for a in leaves {
         counts[a.class as usize] += 1;
     }
+    median_of(&counts)
+}
+
+/// The median class of a histogram of size classes.
+pub(crate) fn median_of(counts: &[usize; 256]) -> u8 {
+    let total: usize = counts.iter().sum();
     let mut seen = 0;
     for (class, &count) in counts.iter().enumerate() {
         seen += count;
-        if 2 * seen >= leaves.len() {
+        if 2 * seen >= total {
             return class as u8;
         }
     }
@@ -79,7 +85,7 @@ struct Sorted<'a, B: Bound> {
 }
 
 impl<B: Bound> Expand<B> for Sorted<'_, B> {
-    fn expand(&self, atom: &Atom<B>, out: &mut [Node<B>], base: u32) -> (Ref, B) {
+    fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, out: &mut [N], base: u32) -> (Ref, B) {
         let range = atom.r.0 as usize..atom.r.0 as usize + atom.weight as usize;
         let b = lbvh(&self.leaves[range.clone()], &self.codes[range], out, base);
         (Ref::node(base), b)
@@ -89,7 +95,7 @@ impl<B: Bound> Expand<B> for Sorted<'_, B> {
 /// Where to split the sorted range `start..end` (at least 2 long), relative
 /// to `start`: at the first code with the highest differing bit set, or in the
 /// middle when all codes are equal.
-fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
+pub(crate) fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
     let (first, last) = (codes[start], codes[end - 1]);
     if first == last {
         return (end - start) / 2;
@@ -100,7 +106,7 @@ fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
 
 /// Cuts the sorted range `start..end` at Morton bit boundaries until every
 /// piece has at most [`CLUSTER`] leaves, appending the pieces in order.
-fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(usize, usize)>) {
+pub(crate) fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(usize, usize)>) {
     if end - start <= CLUSTER {
         clusters.push((start, end));
         return;
@@ -117,21 +123,38 @@ fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     let (lo, hi) = leaves.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), a| {
         (lo.min(a.center), hi.max(a.center))
     });
-    let cells = ((1 << BITS) - 1) as f32;
-    let extent = hi - lo;
-    // A flat axis gets scale 0 (all its coordinates quantise to 0).
-    let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), Vec3::splat(cells) / extent, Vec3::ZERO);
-    let mut keyed: Vec<(u32, u32)> = leaves
-        .iter()
-        .enumerate()
-        .map(|(i, a)| {
-            let q = ((a.center - lo) * scale).clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
-            (spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2, i as u32)
-        })
-        .collect();
+    let grid = Grid::new(lo, hi);
+    let mut keyed: Vec<(u32, u32)> =
+        leaves.iter().enumerate().map(|(i, a)| (grid.code(a.center), i as u32)).collect();
     radix_sort(&mut keyed);
     permute(leaves, &mut keyed);
     keyed.into_iter().map(|(c, _)| c).collect()
+}
+
+/// The Morton grid over a box of centres: 2^10 cells per axis.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Grid {
+    lo: Vec3,
+    scale: Vec3,
+}
+
+impl Grid {
+    /// The grid over the box from `lo` to `hi`.
+    pub(crate) fn new(lo: Vec3, hi: Vec3) -> Grid {
+        let cells = ((1 << BITS) - 1) as f32;
+        let extent = hi - lo;
+        // A flat axis gets scale 0 (all its coordinates quantise to 0).
+        let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), Vec3::splat(cells) / extent, Vec3::ZERO);
+        Grid { lo, scale: Vec3::select(scale.is_finite_mask(), scale, Vec3::ZERO) }
+    }
+
+    /// The 30-bit Morton code of the cell holding `p` (clamped into the grid).
+    #[inline]
+    pub(crate) fn code(&self, p: Vec3) -> u32 {
+        let cells = ((1 << BITS) - 1) as f32;
+        let q = ((p - self.lo) * self.scale).clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
+        spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2
+    }
 }
 
 /// Reorders `items` in place so that position `p` holds the item that was
@@ -169,7 +192,7 @@ fn spread(v: u32) -> u32 {
 
 /// Stable LSD radix sort of (key, value) by the 30-bit key: three passes of
 /// 10 bits, O(n).
-fn radix_sort(items: &mut Vec<(u32, u32)>) {
+pub(crate) fn radix_sort(items: &mut Vec<(u32, u32)>) {
     let mut scratch = vec![(0, 0); items.len()];
     for pass in 0..3 {
         let shift = pass * BITS;
@@ -195,17 +218,22 @@ fn radix_sort(items: &mut Vec<(u32, u32)>) {
 /// highest differing bit of the range's codes flips (Lauterbach et al. 2009).
 /// Within a cluster this costs nothing but the split search, and measured as
 /// good for pair searches as a binned-SAH cluster at half the build time.
-fn lbvh<B: Bound>(leaves: &[Atom<B>], codes: &[u32], out: &mut [Node<B>], base: u32) -> B {
+pub(crate) fn lbvh<B: Bound, N: NodeOut<B>>(
+    leaves: &[Atom<B>],
+    codes: &[u32],
+    out: &mut [N],
+    base: u32,
+) -> B {
     let mid = morton_split(codes, 0, codes.len());
     let (head, rest) = out.split_at_mut(1);
     let (left_out, right_out) = rest.split_at_mut(mid - 1);
-    let sub = |range: std::ops::Range<usize>, out: &mut [Node<B>], base: u32| match range.len() {
+    let sub = |range: std::ops::Range<usize>, out: &mut [N], base: u32| match range.len() {
         1 => (leaves[range.start].r, leaves[range.start].bound),
         _ => (Ref::node(base), lbvh(&leaves[range.clone()], &codes[range], out, base)),
     };
     let (lr, lb) = sub(0..mid, left_out, base + 1);
     let (rr, rb) = sub(mid..codes.len(), right_out, base + mid as u32);
-    head[0] = Node { bounds: [lb, rb], child: [lr, rr] };
+    head[0].set([lb, rb], [lr, rr]);
     lb.merge(&rb)
 }
 

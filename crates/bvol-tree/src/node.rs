@@ -79,3 +79,25 @@ impl<B: Bound> Node<B> {
         usize::from(self.child[0] != r)
     }
 }
+
+/// Where a build writes an internal node: the whole [`Node`], or its child
+/// references alone (a staged rebuild's topology, whose bounds the refit that
+/// installs it fills in: 8 bytes a node instead of 56 for boxes).
+pub(crate) trait NodeOut<B: Bound>: Send {
+    /// Writes the node with children `child` of bounds `bounds`.
+    fn set(&mut self, bounds: [B; 2], child: [Ref; 2]);
+}
+
+impl<B: Bound> NodeOut<B> for Node<B> {
+    #[inline]
+    fn set(&mut self, bounds: [B; 2], child: [Ref; 2]) {
+        *self = Node { bounds, child };
+    }
+}
+
+impl<B: Bound> NodeOut<B> for [Ref; 2] {
+    #[inline]
+    fn set(&mut self, _: [B; 2], child: [Ref; 2]) {
+        *self = child;
+    }
+}

@@ -124,6 +124,7 @@ impl<B: Bound> Tree<B> {
     /// Replaces every node by a fresh build over `atoms` (all of them leaves),
     /// in preorder from node 0, with no free nodes.
     pub(crate) fn install(&mut self, atoms: &mut Vec<Atom<B>>) {
+        self.staged = None;
         self.free = Ref::NONE;
         self.free_count = 0;
         match atoms.as_slice() {
@@ -145,6 +146,24 @@ impl<B: Bound> Tree<B> {
             }
         }
         self.upkeep.after_rebuild(self.sah_cost());
+    }
+
+    /// Makes the arrays those of a tree of `n` internal nodes laid out in
+    /// preorder from the root at node 0, none free, as a caller is about to
+    /// write them over the first `n` nodes: the rest are dropped, and every
+    /// parent link is left for the caller to set but the root's.
+    pub(crate) fn preorder_arrays(&mut self, n: usize) {
+        self.nodes.truncate(n);
+        self.parents.clear();
+        self.parents.resize(n, NONE);
+        self.parents[0] = ROOT;
+        self.enlarged.clear();
+        self.enlarged.resize(n, false);
+        self.free = Ref::NONE;
+        self.free_count = 0;
+        self.root = Ref::node(0);
+        self.upkeep.preorder = true;
+        self.upkeep.reshaped = false;
     }
 
     /// Resizes the node arrays to `n` fresh nodes, releasing spare capacity.

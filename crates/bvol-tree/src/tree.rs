@@ -77,6 +77,8 @@ pub struct Tree<B: Bound> {
     pub(crate) config: Config,
     /// Upkeep state: the cost at the last whole build, the layout, scratch.
     pub(crate) upkeep: crate::upkeep::Upkeep,
+    /// The refit path's rebuild in progress, a step a frame.
+    pub(crate) staged: Option<Box<crate::staged::Staged<B>>>,
 }
 
 impl<B: Bound> Default for Tree<B> {
@@ -109,6 +111,7 @@ impl<B: Bound> Tree<B> {
             changes: Changes::default(),
             config,
             upkeep: Default::default(),
+            staged: None,
         }
     }
 
@@ -144,6 +147,17 @@ impl<B: Bound> Tree<B> {
         }
     }
 
+    /// Asks for the node that holds leaf `id`'s bound, to be read soon:
+    /// reads in an order other than the tree's wait on memory for each.
+    #[inline]
+    pub(crate) fn prefetch_leaf(&self, id: u32) {
+        if let Some(&p) = self.leaf_parents.get(id as usize)
+            && let Some(node) = self.nodes.get(p as usize)
+        {
+            bvol_volumes::prefetch(node);
+        }
+    }
+
     /// The bound of the whole tree, `None` when empty.
     pub fn root_bound(&self) -> Option<B> {
         (self.root != Ref::NONE).then_some(self.root_bound)
@@ -169,6 +183,7 @@ impl<B: Bound> Tree<B> {
         let fat = bound.fattened(self.margin(&bound, 0.0));
         self.insert_leaf(id, bound, &fat);
         self.len += 1;
+        self.staged = None; // its topology lacks the new leaf
         self.changes.mark(id);
         Ok(())
     }
@@ -181,6 +196,7 @@ impl<B: Bound> Tree<B> {
         }
         let bound = self.remove_leaf(id);
         self.len -= 1;
+        self.staged = None; // its topology holds the leaf
         self.changes.mark(id);
         Ok(bound)
     }
@@ -232,6 +248,9 @@ impl<B: Bound> Tree<B> {
         } else {
             self.remove_leaf(id);
             self.insert_leaf(id, bound, &fat);
+            if let Some(staged) = &mut self.staged {
+                staged.note_jump(id);
+            }
             Move::Reinserted
         }
     }
@@ -497,6 +516,7 @@ impl<B: Bound> Tree<B> {
             + self.leaf_parents.capacity() * 4
             + self.changes.memory_bytes()
             + self.upkeep.memory_bytes()
+            + self.staged.as_ref().map_or(0, |s| s.memory_bytes())
     }
 }
 

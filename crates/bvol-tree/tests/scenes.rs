@@ -182,3 +182,57 @@ fn results_do_not_depend_on_the_thread_count() {
     assert_eq!(run(2), one);
     assert_eq!(run(4), one);
 }
+
+/// Every box glides at its own constant velocity (up to 0.15 of a body's
+/// size per frame on each axis), and `jumps` boxes a frame teleport: the
+/// tree drifts from its build as real scenes do.
+fn glide(scene: &mut Scene<Aabb>, jumps: usize) {
+    for (i, b) in scene.bounds.iter_mut().enumerate() {
+        let along = |k: usize| ((i * k) % 13) as f32 / 13.0 - 0.5;
+        *b = b.shifted(Vec3::new(along(7), along(11), along(5)) * 0.3);
+    }
+    for _ in 0..jumps {
+        let i = scene.rng.below(scene.bounds.len() as u64) as usize;
+        scene.bounds[i] = Scene::random(&mut scene.rng, scene.world);
+    }
+}
+
+/// The refit path's rebuilds are staged over frames: on gliding boxes the
+/// tree is rebuilt again and again, and no frame rebuilds it in one go
+/// (every frame that rebuilds installs a staged topology), with and without
+/// a few teleports a frame (which the staged topology places where they
+/// were, so they are reinserted when it is installed); every frame's pairs
+/// and pair-set events equal brute force, and the pairs come in the same
+/// order on 1 and 2 threads.
+#[test]
+fn drift_rebuilds_are_staged_over_frames_and_exact() {
+    for jumps in [0, 3] {
+        let run = |threads: usize| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let mut scene = Scene::<Aabb>::new(3000, 21);
+                let mut tree = Tree::new();
+                let mut set = PairSet::new();
+                let (mut installs, mut lists) = (0, Vec::new());
+                for f in 0..90 {
+                    glide(&mut scene, jumps);
+                    let frame = tree.update(&scene.bounds).unwrap();
+                    tree.validate().unwrap();
+                    let want = brute_pairs(&scene.leaves());
+                    let listed = tree.pairs();
+                    let mut got = listed.clone();
+                    got.sort_unstable();
+                    assert_eq!(got, want, "frame {f}, {jumps} jumps");
+                    set.update(&mut tree);
+                    assert_eq!(set.pairs(), &want[..], "frame {f}, {jumps} jumps");
+                    assert!(frame.rebuilt == 0 || frame.installed, "frame {f} rebuilt in one go");
+                    installs += usize::from(frame.installed);
+                    lists.push(listed);
+                }
+                assert!(installs >= 2, "{installs} staged rebuilds installed, {jumps} jumps");
+                lists
+            })
+        };
+        assert!(run(1) == run(2), "{jumps} jumps: the order depends on the thread count");
+    }
+}
