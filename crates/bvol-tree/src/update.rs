@@ -55,8 +55,12 @@ impl<B: Bound> Tree<B> {
         if let Some(last) = bounds.len().checked_sub(1) {
             check_id(u32::try_from(last).unwrap_or(u32::MAX))?;
         }
-        // In parallel; the error names the first bad bound, as a loop would.
-        if let Some(id) = bounds.par_iter().position_first(|b| b.check().is_err()) {
+        // In parallel, a chunk a task (a task a bound cost 2.5 times a plain
+        // loop on one thread: 0.65 ms of a 9 ms frame of 100 000 boxes); the
+        // error names the first bad bound, as a loop would.
+        let bad = |b: &B| b.check().is_err();
+        if let Some(k) = bounds.par_chunks(CHECK_CHUNK).position_first(|c| c.iter().any(bad)) {
+            let id = k * CHECK_CHUNK + bounds[k * CHECK_CHUNK..].iter().position(bad).unwrap_or(0);
             check_bound(id as u32, &bounds[id])?;
         }
         let mut frame = Frame::default();
@@ -443,6 +447,8 @@ pub(crate) const JUMPS_FOR_REBUILD: usize = 16;
 /// leaves where they were when it began (on the uniform scene, 0.35 left
 /// the mean pair search as it was with whole rebuilds at the full drift).
 const DRIFT_STAGED: f64 = 0.35;
+/// Bounds checked by one task of [`Tree::update`].
+const CHECK_CHUNK: usize = 16384;
 /// Subtrees with at least this many nodes are refit on two rayon tasks.
 const PARALLEL_REFIT: usize = 8192;
 

@@ -108,6 +108,28 @@ fn unknown_duplicate_and_out_of_range_ids_are_refused() {
     assert_eq!(dup.err(), Some(TreeError::DuplicateId { id: 1 }));
 }
 
+/// A frame with bad bounds far apart (in different chunks of the parallel
+/// check) names the first, whatever the thread count, and changes nothing.
+#[test]
+fn a_frame_names_its_first_bad_bound_on_any_thread_count() {
+    let good: Vec<Aabb> = (0..50_000).map(|i| unit((i % 200) as f32 * 2.0)).collect();
+    for threads in [1, 2, 4] {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        pool.install(|| {
+            let mut tree = Tree::from_bounds(&good).unwrap();
+            let before = tree.pairs();
+            let mut frame = good.clone();
+            frame[41_000] = Aabb::new(Vec3::splat(f32::NAN), Vec3::ONE);
+            frame[20_001] = Aabb::new(Vec3::new(0.0, 2.0, 0.0), Vec3::new(1.0, 1.0, 1.0));
+            let inverted = BoundError::Inverted { axis: 1, min: 2.0, max: 1.0 };
+            let want = TreeError::InvalidBound { id: 20_001, reason: inverted };
+            assert_eq!(tree.update(&frame), Err(want), "{threads} threads");
+            assert_eq!(tree.pairs(), before, "{threads} threads");
+            tree.validate().unwrap();
+        });
+    }
+}
+
 #[test]
 fn errors_say_what_and_where() {
     let inverted = TreeError::InvalidBound {
