@@ -19,6 +19,8 @@ const CLUSTER: usize = 16;
 pub(crate) const LARGE_CLASSES: u8 = 4;
 /// Bits per axis of a Morton code (30 bits in all).
 const BITS: u32 = 10;
+/// The last cell of a Morton grid along an axis.
+const LAST_CELL: f32 = ((1 << BITS) - 1) as f32;
 
 /// Builds a tree over `leaves` (at least 2, weight 1 each) into `out`, which
 /// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root. Returns
@@ -95,7 +97,7 @@ impl<B: Bound> Expand<B> for Sorted<'_, B> {
 /// Where to split the sorted range `start..end` (at least 2 long), relative
 /// to `start`: at the first code with the highest differing bit set, or in the
 /// middle when all codes are equal.
-pub(crate) fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
+fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
     let (first, last) = (codes[start], codes[end - 1]);
     if first == last {
         return (end - start) / 2;
@@ -141,18 +143,18 @@ pub(crate) struct Grid {
 impl Grid {
     /// The grid over the box from `lo` to `hi`.
     pub(crate) fn new(lo: Vec3, hi: Vec3) -> Grid {
-        let cells = ((1 << BITS) - 1) as f32;
         let extent = hi - lo;
-        // A flat axis gets scale 0 (all its coordinates quantise to 0).
-        let scale = Vec3::select(extent.cmpgt(Vec3::ZERO), Vec3::splat(cells) / extent, Vec3::ZERO);
-        Grid { lo, scale: Vec3::select(scale.is_finite_mask(), scale, Vec3::ZERO) }
+        // A flat axis gets scale 0 (all its coordinates quantise to 0), and
+        // so does one too thin for its scale to be finite.
+        let scale = Vec3::splat(LAST_CELL) / extent;
+        let usable = extent.cmpgt(Vec3::ZERO) & scale.is_finite_mask();
+        Grid { lo, scale: Vec3::select(usable, scale, Vec3::ZERO) }
     }
 
     /// The 30-bit Morton code of the cell holding `p` (clamped into the grid).
     #[inline]
     pub(crate) fn code(&self, p: Vec3) -> u32 {
-        let cells = ((1 << BITS) - 1) as f32;
-        let q = ((p - self.lo) * self.scale).clamp(Vec3::ZERO, Vec3::splat(cells)).as_uvec3();
+        let q = ((p - self.lo) * self.scale).clamp(Vec3::ZERO, Vec3::splat(LAST_CELL)).as_uvec3();
         spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2
     }
 }
