@@ -11,8 +11,11 @@
 //! they were a few frames before. A leaf that jumped clear of its bound
 //! meanwhile (a teleport) would stretch its new ancestors across the gap:
 //! it is reinserted where it now is once the topology is installed, and
-//! when jumps are many (more than one leaf in [`JUMPS_FOR_REBUILD`] over the
-//! build's frames) the tree is rebuilt in one go instead. Inserting or
+//! when such jumps are many (more than one leaf in [`MANY_JUMPS`]
+//! over the build's frames) the tree is rebuilt in one go instead. When
+//! many leaves jump in one frame (mass motion: bodies falling faster than
+//! their size, with their neighbours), the jumps are not noted: the topology
+//! is installed as it is, and the next build starts at once. Inserting or
 //! removing a leaf drops the build: its topology would no longer hold
 //! exactly the tree's leaves.
 
@@ -20,7 +23,7 @@ use crate::build::{Atom, Expand, build, size_class};
 use crate::morton::{Grid, LARGE_CLASSES, cut, lbvh, median_of, radix_sort};
 use crate::node::{Node, NodeOut, Ref};
 use crate::tree::NONE;
-use crate::update::{JUMPS_FOR_REBUILD, PREFETCH_AHEAD};
+use crate::update::{MANY_JUMPS, PREFETCH_AHEAD};
 use crate::{Bound, Tree};
 
 /// The frames a staged rebuild takes, its install included.
@@ -72,8 +75,11 @@ pub(crate) struct Staged<B: Bound> {
     atoms: Vec<Atom<B>>,
     /// Each internal node's children, in preorder from the root.
     topology: Vec<[Ref; 2]>,
-    /// Ids that jumped clear of their bound since the build began.
+    /// Ids that jumped clear of their bound since the build began, in
+    /// frames without mass motion.
     stale: Vec<u32>,
+    /// Whether a frame of mass motion passed since the build began.
+    mass: bool,
 }
 
 impl<B: Bound> Staged<B> {
@@ -91,6 +97,7 @@ impl<B: Bound> Staged<B> {
             atoms: Vec::new(),
             topology: Vec::new(),
             stale: Vec::new(),
+            mass: false,
         }
     }
 
@@ -220,8 +227,9 @@ impl<B: Bound> Staged<B> {
 /// What [`Tree::install_staged`] did.
 pub(crate) enum Installed {
     /// Installed the staged topology; `stale` jumped while it was built,
-    /// and are placed where they were.
-    Staged { stale: Vec<u32> },
+    /// and are placed where they were: `None` when a frame of mass motion
+    /// passed meanwhile (see the module docs).
+    Staged { stale: Option<Vec<u32>> },
     /// Rebuilt the tree in one go instead.
     Rebuilt,
 }
@@ -239,13 +247,18 @@ impl<B: Bound> Expand<B> for Deferred {
 
 impl<B: Bound> Tree<B> {
     /// One step of the staged rebuild after a refit, noting the leaves that
-    /// `jumped` this frame; starts one first if none runs.
-    pub(crate) fn advance_staged(&mut self, jumped: &[(u32, B)]) {
+    /// `jumped` this frame, or that it was a frame of `mass` motion; starts
+    /// one first if none runs.
+    pub(crate) fn advance_staged(&mut self, jumped: &[(u32, B)], mass: bool) {
         if !self.root.is_node() {
             return;
         }
         let mut staged = self.staged.take().unwrap_or_else(|| Box::new(Staged::new()));
-        jumped.iter().for_each(|&(id, _)| staged.note_jump(id));
+        if mass {
+            staged.mass = true;
+        } else {
+            jumped.iter().for_each(|&(id, _)| staged.note_jump(id));
+        }
         staged.advance(self);
         self.staged = Some(staged);
     }
@@ -268,7 +281,7 @@ impl<B: Bound> Tree<B> {
         let mut stale = staged.stale;
         stale.sort_unstable();
         stale.dedup();
-        if stale.len() * JUMPS_FOR_REBUILD > self.len {
+        if !staged.mass && stale.len() * MANY_JUMPS > self.len {
             self.rebuild();
             return Some(Installed::Rebuilt);
         }
@@ -306,6 +319,6 @@ impl<B: Bound> Tree<B> {
                 self.set_parent(c, x as u32);
             }
         }
-        Some(Installed::Staged { stale })
+        Some(Installed::Staged { stale: (!staged.mass).then_some(stale) })
     }
 }

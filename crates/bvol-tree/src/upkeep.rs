@@ -24,6 +24,9 @@ pub(crate) struct Upkeep {
     pub(crate) moved: Vec<u32>,
     /// Scratch of [`Tree::update`]: ids that jumped clear of their bound.
     pub(crate) jumped: Vec<u32>,
+    /// Whether the last refit found more than one leaf in
+    /// [`MANY_JUMPS`](crate::update::MANY_JUMPS) jumped.
+    pub(crate) mass_motion: bool,
 }
 
 impl Default for Upkeep {
@@ -35,6 +38,7 @@ impl Default for Upkeep {
             reshaped: false,
             moved: Vec::new(),
             jumped: Vec::new(),
+            mass_motion: false,
         }
     }
 }
@@ -50,6 +54,14 @@ impl Upkeep {
     pub(crate) fn reshaped(&mut self) {
         self.preorder = false;
         self.reshaped = true;
+    }
+
+    /// Whether a refit keeps the old bound of the leaves that jumped, to
+    /// reinsert them after: not when the last frame had many jumps, which
+    /// are then expected again and refit in place (reinserted instead, after
+    /// the refit, if they turn out few).
+    pub(crate) fn hold_jumps(&self) -> bool {
+        !self.mass_motion
     }
 
     /// Bytes held.
