@@ -106,6 +106,9 @@ impl<B: Bound> Tree<B> {
             // written) rather than filling the buffer afresh.
             pairs.items.truncate(pairs.len);
             *out = pairs.items;
+            for pair in out.iter_mut() {
+                *pair = ordered(*pair);
+            }
         } else {
             out.clear();
             let parts: Vec<Vec<(u32, u32)>> = chunks
@@ -117,13 +120,7 @@ impl<B: Bound> Tree<B> {
                     })
                 })
                 .collect();
-            concat(parts, out);
-        }
-        // The search files a pair as it meets it; one pass over the pairs
-        // found orders them for less than ordering the four outcomes of
-        // every visit, kept or not (a tenth of the search's instructions).
-        for pair in out.iter_mut() {
-            *pair = (pair.0.min(pair.1), pair.0.max(pair.1));
+            concat(parts, out, ordered);
         }
     }
 
@@ -168,7 +165,7 @@ impl<B: Bound> Tree<B> {
             })
             .collect();
         out.extend_from_slice(&head);
-        concat(parts, &mut out);
+        concat(parts, &mut out, |pair| pair);
         out
     }
 }
@@ -204,12 +201,35 @@ fn one_thread() -> bool {
     rayon::current_num_threads() == 1
 }
 
-/// Appends the parts to `out` in order.
-fn concat(parts: Vec<Vec<(u32, u32)>>, out: &mut Vec<(u32, u32)>) {
-    out.reserve(parts.iter().map(Vec::len).sum());
-    for part in parts {
-        out.extend_from_slice(&part);
+/// The search files a pair as it meets it; one pass over the pairs found
+/// orders them for less than ordering the four outcomes of every visit,
+/// kept or not (a tenth of the search's instructions).
+#[inline]
+fn ordered(pair: (u32, u32)) -> (u32, u32) {
+    (pair.0.min(pair.1), pair.0.max(pair.1))
+}
+
+/// Appends the parts to `out` in order, each pair passed through `f`: a
+/// rayon task a part, each writing its own stretch of `out`. (One thread
+/// copying them after the search took a tenth of the two-thread search of
+/// 2 million pairs.)
+fn concat(
+    parts: Vec<Vec<(u32, u32)>>,
+    out: &mut Vec<(u32, u32)>,
+    f: impl Fn((u32, u32)) -> (u32, u32) + Sync,
+) {
+    let start = out.len();
+    out.resize(start + parts.iter().map(Vec::len).sum::<usize>(), (0, 0));
+    let mut rest = &mut out[start..];
+    let mut stretches = Vec::with_capacity(parts.len());
+    for part in &parts {
+        let (stretch, tail) = std::mem::take(&mut rest).split_at_mut(part.len());
+        stretches.push(stretch);
+        rest = tail;
     }
+    stretches.into_par_iter().zip(&parts).for_each(|(stretch, part)| {
+        stretch.iter_mut().zip(part).for_each(|(to, &pair)| *to = f(pair));
+    });
 }
 
 /// A stack (or output buffer) whose pushes are branch-free: the value is
