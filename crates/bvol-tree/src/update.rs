@@ -243,9 +243,9 @@ impl<B: Bound> Tree<B> {
     /// After a staged rebuild's install and the refit: the leaves that
     /// jumped while it was built (`stale`) go where they now are, as this
     /// frame's `jumped` did, and the refit's `cost` is the new baseline.
-    /// When mass motion went on while it was built (`stale` is `None`), or
-    /// many leaves jumped, the topology is out of date as it lands: its cost
-    /// is no baseline, and the next build is started at once.
+    /// When mass motion went on while it was built (`stale` is `None`), the
+    /// topology is out of date as it lands: its cost is no baseline, and the
+    /// next build starts at once.
     fn after_install(
         &mut self,
         jumped: &[(u32, B)],
@@ -255,23 +255,18 @@ impl<B: Bound> Tree<B> {
     ) {
         frame.rebuilt = self.len;
         frame.installed = true;
-        let mut restart = true;
-        if let Some(stale) = stale {
-            restart = stale.len() * JUMPS_FOR_RESTART > self.len;
-            // This frame's jumps are in place already.
-            let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
-            now.sort_unstable();
-            for id in stale.into_iter().filter(|id| now.binary_search(id).is_err()) {
-                let bound = self.remove_leaf(id);
-                self.insert_leaf(id, bound, &bound);
-                frame.reinserted += 1;
-            }
+        let Some(stale) = stale else {
+            return self.advance_staged(jumped, self.upkeep.mass_motion);
+        };
+        // This frame's jumps are in place already.
+        let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
+        now.sort_unstable();
+        for id in stale.into_iter().filter(|id| now.binary_search(id).is_err()) {
+            let bound = self.remove_leaf(id);
+            self.insert_leaf(id, bound, &bound);
+            frame.reinserted += 1;
         }
-        if restart {
-            self.advance_staged(jumped, self.upkeep.mass_motion);
-        } else {
-            self.upkeep.built_cost = cost;
-        }
+        self.upkeep.built_cost = cost;
     }
 
     /// The staged rebuild's step after a refit of `cost`, or its start when
@@ -481,12 +476,6 @@ impl<B: Bound> Tree<B> {
 /// more to reinsert at its install than a rebuild in one go (on 100 000
 /// leaves, a rebuild costs about as much as 5 000 reinsertions).
 pub(crate) const MANY_JUMPS: usize = 16;
-/// When more than one leaf in this many jumped while a staged rebuild was
-/// built, the next starts as it is installed: on the resting pile, the
-/// last build begun while the boxes still fell and settled, with one leaf
-/// in 17 reinserted, left the tree's SAH cost at 216 against 159 for a
-/// build of the settled boxes, and the pair search 30% slower for good.
-const JUMPS_FOR_RESTART: usize = 64;
 /// A staged rebuild starts when the SAH cost has drifted this fraction of
 /// [`Config::drift`](crate::Config) above its cost after the last build:
 /// the tree drifts on while the build runs, and its topology places the

@@ -276,7 +276,7 @@ fn drift_rebuilds_are_staged_over_frames_and_exact() {
 /// rebuilt in one go, every frame exact; and once they rest on the floor, a
 /// last staged rebuild leaves the tree as good as one built afresh over the
 /// settled boxes. (Kept as installed, the last build begun while they still
-/// fell left the cost 18% higher here, and 36% on the benchmark's pile.)
+/// fell left the cost 10% higher here.)
 #[test]
 fn falling_boxes_are_refit_in_place_and_settle_into_a_fresh_tree() {
     // A frame of mass motion: more than one box in 16 jumps.
