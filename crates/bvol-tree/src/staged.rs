@@ -80,6 +80,8 @@ pub(crate) struct Staged<B: Bound> {
     stale: Vec<u32>,
     /// Whether a frame of mass motion passed since the build began.
     mass: bool,
+    /// Whether it began at the install of one that saw mass motion.
+    after_mass: bool,
 }
 
 impl<B: Bound> Staged<B> {
@@ -98,6 +100,7 @@ impl<B: Bound> Staged<B> {
             topology: Vec::new(),
             stale: Vec::new(),
             mass: false,
+            after_mass: false,
         }
     }
 
@@ -228,8 +231,9 @@ impl<B: Bound> Staged<B> {
 pub(crate) enum Installed {
     /// Installed the staged topology; `stale` jumped while it was built,
     /// and are placed where they were: `None` when a frame of mass motion
-    /// passed meanwhile (see the module docs).
-    Staged { stale: Option<Vec<u32>> },
+    /// passed meanwhile (see the module docs). `after_mass` when it began at
+    /// the install of one that did.
+    Staged { stale: Option<Vec<u32>>, after_mass: bool },
     /// Rebuilt the tree in one go instead.
     Rebuilt,
 }
@@ -248,12 +252,14 @@ impl<B: Bound> Expand<B> for Deferred {
 impl<B: Bound> Tree<B> {
     /// One step of the staged rebuild after a refit, noting the leaves that
     /// `jumped` this frame, or that it was a frame of `mass` motion; starts
-    /// one first if none runs.
-    pub(crate) fn advance_staged(&mut self, jumped: &[(u32, B)], mass: bool) {
+    /// one first if none runs (`after_mass` when an install that saw mass
+    /// motion starts it).
+    pub(crate) fn advance_staged(&mut self, jumped: &[(u32, B)], mass: bool, after_mass: bool) {
         if !self.root.is_node() {
             return;
         }
-        let mut staged = self.staged.take().unwrap_or_else(|| Box::new(Staged::new()));
+        let mut staged =
+            self.staged.take().unwrap_or_else(|| Box::new(Staged { after_mass, ..Staged::new() }));
         if mass {
             staged.mass = true;
         } else {
@@ -319,6 +325,7 @@ impl<B: Bound> Tree<B> {
                 self.set_parent(c, x as u32);
             }
         }
-        Some(Installed::Staged { stale: (!staged.mass).then_some(stale) })
+        let after_mass = staged.after_mass;
+        Some(Installed::Staged { stale: (!staged.mass).then_some(stale), after_mass })
     }
 }
