@@ -155,14 +155,9 @@ impl<B: Bound> Tree<B> {
                 }
                 let node = &mut self.nodes[p as usize];
                 let old = &mut node.bounds[node.side_of(Ref::leaf(id))];
-                // A jump keeps its old bound for now, as in the full refit.
-                if !bound.overlaps(old) {
+                if place_leaf(old, bound, hold) {
                     jumped.push((id, bound));
-                    if hold {
-                        continue;
-                    }
                 }
-                *old = bound;
             }
             let cost = self.refit_pass(None, &mut Vec::new(), &mut Vec::new());
             self.after_refit(&jumped, moved.iter().map(|m| m.0), cost, installed, &mut frame);
@@ -587,6 +582,19 @@ fn refit_run<B: Bound>(
     found.inner += inner;
 }
 
+/// Gives a leaf stored with bound `old` its `new` one, unless it jumped
+/// clear of the old while jumps are held ([`Upkeep::hold_jumps`](crate::upkeep::Upkeep)):
+/// then it keeps the old for now, to be reinserted after the refit, which so
+/// measures the cost without its stretch. Returns whether it jumped.
+#[inline]
+fn place_leaf<B: Bound>(old: &mut B, new: B, hold: bool) -> bool {
+    let jumped = !new.overlaps(old);
+    if !(jumped && hold) {
+        *old = new;
+    }
+    jumped
+}
+
 /// How many nodes ahead of the one being refit [`refit_run`] asks for the
 /// user's leaf bounds (and [`Tree::update_moved`] for a leaf's parent). Leaf
 /// ids follow the user's order, not the tree's, so those reads are
@@ -616,15 +624,8 @@ fn refit_node<B: Bound>(
             let old = &mut node.bounds[side];
             if b != *old {
                 found.moved.push(c.index());
-                // A jump keeps its old bound for now: it is reinserted after
-                // the refit, which so measures the cost without its stretch.
-                if b.overlaps(old) {
-                    *old = b;
-                } else {
+                if place_leaf(old, b, found.hold) {
                     found.jumped.push(c.index());
-                    if !found.hold {
-                        *old = b;
-                    }
                 }
             }
         }
