@@ -121,14 +121,14 @@ pub(crate) fn lanes_left<const N: usize>(
 }
 
 /// A range of items cut into runs of at most 64, for bit masks.
-pub(crate) fn runs(items: std::ops::Range<u32>) -> impl Iterator<Item = std::ops::Range<u32>> {
+pub(crate) fn runs(items: Range<u32>) -> impl Iterator<Item = Range<u32>> {
     items.clone().step_by(64).map(move |start| start..(start + 64).min(items.end))
 }
 
 /// The items of a run (at most 64) that `keep` holds for, as a bit mask
 /// (bit `k` for item `run.start + k`), found without a branch an item.
 #[inline(always)]
-pub(crate) fn live_mask(run: std::ops::Range<u32>, keep: impl Fn(u32) -> bool) -> u64 {
+pub(crate) fn live_mask(run: Range<u32>, keep: impl Fn(u32) -> bool) -> u64 {
     (0..).zip(run).fold(0, |live, (k, item)| live | u64::from(keep(item)) << k)
 }
 

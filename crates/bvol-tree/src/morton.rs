@@ -139,7 +139,7 @@ fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     keyed.into_iter().map(|(c, _)| c).collect()
 }
 
-/// The Morton grid over a box of centres: 2^10 cells per axis.
+/// The Morton grid over a box (the leaves' bounds'): 2^10 cells per axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Grid {
     lo: Vec3,
