@@ -34,6 +34,12 @@ const CHUNK: usize = 256;
 const TASKS: usize = 512;
 /// A breadth-first level with more visits than this is split in two tasks.
 const SPLIT: usize = 4096;
+/// How many visits ahead in a level the search asks for the two nodes of a
+/// visit. Within the caches (100 000 boxes) the search does not wait on
+/// memory and this changes nothing; past them (a million boxes) a level's
+/// visits land anywhere in 56 MB of nodes, and asking 32 ahead took the
+/// search from 67 to 61-62 ms a frame (8 ahead: 64).
+const LEVEL_AHEAD: usize = 32;
 
 /// A pair of internal nodes to visit, `x` in the first tree and `y` in the
 /// second, and which of their children take part: each a node index (below
@@ -357,6 +363,10 @@ impl Walker {
         self.next.reserve(4 * n);
         self.out.reserve(4 * n);
         for k in 0..n {
+            if let Some(ahead) = self.now.items[..n].get(k + LEVEL_AHEAD) {
+                bvol_volumes::prefetch(&s.a[Visit::node(ahead.x) as usize]);
+                bvol_volumes::prefetch(&s.b[Visit::node(ahead.y) as usize]);
+            }
             let v = self.now.items[k];
             self.step(s, v);
         }
@@ -430,6 +440,13 @@ impl Walker {
         self.next.reserve(nodes.len() + 4);
         self.out.reserve(nodes.len() + 4);
         for x in nodes.rev() {
+            // The next chunk's nodes, met in the same order: read while this
+            // chunk's descent works in the cache, they are there when its
+            // turn comes (a million boxes: 61-62 -> 58-59 ms a frame; the
+            // bare pass over 56 MB of nodes had taken about 7).
+            if let Some(next) = x.checked_sub(CHUNK) {
+                bvol_volumes::prefetch(&s.a[next]);
+            }
             let n = &s.a[x];
             // Free nodes have no second child.
             if n.child[1] != Ref::NONE {

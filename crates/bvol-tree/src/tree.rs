@@ -3,6 +3,7 @@
 use crate::changes::Changes;
 use crate::error::{Slot, TreeError};
 use crate::node::{Node, Ref};
+use crate::update::PREFETCH_AHEAD;
 use crate::{Bound, Config};
 
 /// Ids must be below this: they index the tree's per-id arrays directly.
@@ -155,6 +156,23 @@ impl<B: Bound> Tree<B> {
             && let Some(node) = self.nodes.get(p as usize)
         {
             bvol_volumes::prefetch(node);
+        }
+    }
+
+    /// For a loop reading the bounds of leaves `ids` in turn, at `ids[k]`
+    /// now: asks for the node of the leaf [`PREFETCH_AHEAD`] places on,
+    /// and for the parent link of the one twice as far, which that request
+    /// will read (ids in an order other than the tree's wait on memory for
+    /// both, past the caches).
+    #[inline]
+    pub(crate) fn prefetch_leaf_ahead(&self, ids: &[u32], k: usize) {
+        if let Some(&far) = ids.get(k + 2 * PREFETCH_AHEAD)
+            && let Some(link) = self.leaf_parents.get(far as usize)
+        {
+            bvol_volumes::prefetch(link);
+        }
+        if let Some(&later) = ids.get(k + PREFETCH_AHEAD) {
+            self.prefetch_leaf(later);
         }
     }
 
