@@ -83,6 +83,12 @@ const REFIT_CHUNK: usize = 4096;
 const DENSE_REFIT: usize = 8;
 /// Bodies refit at once on SIMD lanes.
 const LANES: usize = 4;
+/// How many bodies ahead the refit asks for the slots it will read and
+/// write, and `World::set_poses` for the pose slots it will write: seven
+/// arrays in step are more streams than the processor follows on its own
+/// (the refit of 100 000 bodies: 2.2-2.4 -> 1.6-1.7 ms; 8 or 32 ahead did
+/// no better).
+pub(crate) const BODIES_AHEAD: usize = 16;
 /// Pairs tested per rayon task by the sphere and OBB stages (a few ns a pair).
 const PAIR_CHUNK: usize = 1024;
 /// How many pairs ahead the stages ask for the second body's data.
@@ -151,16 +157,30 @@ impl World {
         let b = &mut self.bodies;
         let mut dirty = std::mem::take(&mut b.dirty);
         if dirty.len() * DENSE_REFIT >= b.shapes.len() {
-            let groups = (
-                b.spheres.par_chunks_mut(LANES),
-                b.obbs.par_chunks_mut(LANES),
-                b.leaves.par_chunks_mut(LANES),
-                b.is_dirty.par_chunks_mut(LANES),
-                b.shapes.par_chunks(LANES),
-                b.poses.par_chunks(LANES),
+            let chunks = (
+                b.spheres.par_chunks_mut(REFIT_CHUNK),
+                b.obbs.par_chunks_mut(REFIT_CHUNK),
+                b.leaves.par_chunks_mut(REFIT_CHUNK),
+                b.is_dirty.par_chunks_mut(REFIT_CHUNK),
+                b.shapes.par_chunks(REFIT_CHUNK),
+                b.poses.par_chunks(REFIT_CHUNK),
             );
-            groups.into_par_iter().with_min_len(REFIT_CHUNK / LANES).for_each(
-                |(spheres, obbs, leaves, flags, shapes, poses)| {
+            // Written out here: the same loop as a function of its own ran
+            // 10-15% slower (three runs a side), inlined or not.
+            chunks.into_par_iter().for_each(|(spheres, obbs, leaves, flags, shapes, poses)| {
+                let n = spheres.len();
+                for start in (0..n).step_by(LANES) {
+                    let ahead = start + BODIES_AHEAD;
+                    if ahead < n {
+                        prefetch(&spheres[ahead]);
+                        prefetch(&obbs[ahead]);
+                        prefetch(&leaves[ahead]);
+                        prefetch(&poses[ahead]);
+                    }
+                    let end = (start + LANES).min(n);
+                    let (spheres, obbs) = (&mut spheres[start..end], &mut obbs[start..end]);
+                    let (leaves, flags) = (&mut leaves[start..end], &mut flags[start..end]);
+                    let (shapes, poses) = (&shapes[start..end], &poses[start..end]);
                     let mut store = |k: usize, w: WorldBounds| {
                         (spheres[k], obbs[k], leaves[k]) = (w.sphere, w.obb, w.aabb);
                     };
@@ -178,8 +198,8 @@ impl World {
                         }
                     }
                     flags.fill(false);
-                },
-            );
+                }
+            });
         } else {
             for &s in &dirty {
                 let i = s as usize;
