@@ -94,7 +94,7 @@ pub struct Config {
     /// all of it, and starts at 0.35 of this growth so that it is installed
     /// about when the tree would have reached it; where leaves teleport so
     /// often that a staged rebuild would find many placed where they were,
-    /// the tree is rebuilt in one go at this growth.
+    /// it starts at this growth and takes three steps a frame.
     pub drift: f64,
     /// Most atoms (leaves and kept subtrees) one [`Tree::optimize`] call
     /// places: the bound on the per-frame upkeep work. Default 4096, about

@@ -9,10 +9,13 @@
 //!
 //! The leaves move while the build runs, so the topology places them where
 //! they were a few frames before. A leaf that jumped clear of its bound
-//! meanwhile (a teleport) would stretch its new ancestors across the gap:
-//! it is reinserted where it now is once the topology is installed, and
-//! when such jumps are many (more than one leaf in [`MANY_JUMPS`]
-//! over the build's frames) the tree is rebuilt in one go instead. When
+//! meanwhile (a teleport) would stretch its cluster's bound, and its new
+//! ancestors, across the gap: it is left out of its cluster's bound, and
+//! reinserted where it now is once the topology is installed. Where such
+//! jumps come in a steady trickle, so many that a build taking a step a
+//! frame would find more than one leaf in [`MANY_JUMPS`] stale, the build
+//! takes [`TRICKLE_PACE`] steps a frame; only if one leaf in
+//! [`MANY_JUMPS`] is stale even so is the tree rebuilt in one go. When
 //! many leaves jump in one frame (mass motion: bodies falling faster than
 //! their size, with their neighbours), the jumps are not noted: the topology
 //! is installed as it is, and the next build starts at once. Inserting or
@@ -28,6 +31,10 @@ use crate::{Bound, Tree};
 
 /// The frames a staged rebuild takes, its install included.
 pub(crate) const STAGED_FRAMES: usize = 7;
+/// Steps a frame of a rebuild staged among a trickle of teleports: in three
+/// frames, its install included, it finds a third as many of them placed
+/// where they were as one step a frame would.
+pub(crate) const TRICKLE_PACE: usize = 3;
 
 /// A cluster not yet expanded, as the top build leaves it in the topology:
 /// its first node holds this bit and the cluster's size, then the position
@@ -58,6 +65,8 @@ enum Step {
 #[derive(Clone, Debug)]
 pub(crate) struct Staged<B: Bound> {
     step: Step,
+    /// Steps taken a frame.
+    pace: usize,
     /// How many leaves fall in each size class.
     counts: [usize; 256],
     /// Each id's size class (empty once the large leaves are set apart).
@@ -85,10 +94,11 @@ pub(crate) struct Staged<B: Bound> {
 }
 
 impl<B: Bound> Staged<B> {
-    /// A build, not begun.
-    fn new() -> Self {
+    /// A build, not begun, taking `pace` steps a frame.
+    pub(crate) fn new(pace: usize) -> Self {
         Staged {
             step: Step::Codes,
+            pace,
             counts: [0; 256],
             classes: Vec::new(),
             keyed: Vec::new(),
@@ -180,10 +190,18 @@ impl<B: Bound> Staged<B> {
                     tree.prefetch_leaf_ahead(ids, k);
                     bound(ids[k])
                 };
+                // A leaf that jumped since the codes were taken sits in its
+                // cluster where it was, and is reinserted at the install:
+                // its bound now would stretch the cluster across the gap
+                // and mislead the top build (a trickle of teleports left
+                // the installed tree at twice a fresh build's SAH cost).
+                let mut jumped = vec![false; tree.leaf_parents.len()];
+                self.stale.iter().for_each(|&id| jumped[id as usize] = true);
                 for &(start, end) in &self.clusters {
                     let run = &self.ids[start..end];
-                    let merged =
-                        (start + 1..end).fold(bound_at(start), |b, k| b.merge(&bound_at(k)));
+                    let kept = (start..end).filter(|&k| !jumped[ids[k] as usize]);
+                    let merged = kept.map(bound_at).reduce(|a, b| a.merge(&b));
+                    let merged = merged.unwrap_or_else(|| bound(run[0]));
                     self.atoms.push(match run {
                         &[one] => Atom::new(Ref::leaf(one), merged),
                         _ => Atom::weighted(Ref(start as u32), merged, run.len() as u32),
@@ -265,13 +283,15 @@ impl<B: Bound> Tree<B> {
             return;
         }
         let mut staged =
-            self.staged.take().unwrap_or_else(|| Box::new(Staged { after_mass, ..Staged::new() }));
+            self.staged.take().unwrap_or_else(|| Box::new(Staged { after_mass, ..Staged::new(1) }));
         if mass {
             staged.mass = true;
         } else {
             jumped.iter().for_each(|&(id, _)| staged.note_jump(id));
         }
-        staged.advance(self);
+        for _ in 0..staged.pace {
+            staged.advance(self);
+        }
         self.staged = Some(staged);
     }
 

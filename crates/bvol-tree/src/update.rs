@@ -7,7 +7,7 @@ use rayon::prelude::*;
 use bvol_volumes::prefetch;
 
 use crate::node::{Node, Ref};
-use crate::staged::{Installed, STAGED_FRAMES};
+use crate::staged::{Installed, STAGED_FRAMES, Staged, TRICKLE_PACE};
 use crate::tree::{NONE, ROOT, check_bound, check_id};
 use crate::{Bound, Tree, TreeError};
 
@@ -48,10 +48,12 @@ impl<B: Bound> Tree<B> {
     /// a whole rebuild ([`Frame::installed`] marks the frame that installs
     /// it). When more than one leaf in 16 jumps clear of its bound in one
     /// frame (bodies falling faster than their size), the jumps are refit
-    /// where they land, like any move, and left to the staged rebuilds. Only
-    /// a steady trickle of jumps (teleports) so frequent that a staged
-    /// rebuild would find one leaf in 16 placed where it was rebuilds the
-    /// tree in one go.
+    /// where they land, like any move, and left to the staged rebuilds. A
+    /// steady trickle of jumps (teleports) so frequent that a rebuild staged
+    /// a phase a frame would find one leaf in 16 placed where it was has it
+    /// staged three phases a frame, installed at the start of the third
+    /// refit; only a trickle so heavy that even this one would (about one
+    /// leaf in 50 a frame) rebuilds the tree in one go.
     ///
     /// Every bound is checked first: on error nothing has changed.
     pub fn update(&mut self, bounds: &[B]) -> Result<Frame, TreeError> {
@@ -199,29 +201,32 @@ impl<B: Bound> Tree<B> {
         let held = self.upkeep.hold_jumps();
         let mass = jumped.len() * MANY_JUMPS > self.len;
         self.upkeep.mass_motion = mass;
+        // An installed topology places the leaves that jumped while it was
+        // built (`stale`) where they were.
+        let stale = match &installed {
+            Some(Installed::Staged { stale: Some(stale), .. }) => &stale[..],
+            _ => &[],
+        };
         if !mass {
             // A few leaves that jumped clear of their old bound: refit in
             // place they would stretch their ancestors across the gap, and
             // every later pair search would visit them. They are reinserted
             // where they now are (about 1 us each on 100 000 leaves).
-            for &(id, _) in jumped {
-                self.remove_leaf(id);
+            self.reinsert(jumped, stale, frame);
+        } else {
+            if held {
+                // Many: bodies falling faster than their size, and their
+                // neighbours with them. Reinserting them all, or rebuilding
+                // the tree each such frame, cost more than the pair search
+                // lost to a refit in place: the staged rebuilds keep up.
+                for &(id, bound) in jumped {
+                    let p = self.leaf_parents[id as usize];
+                    let node = &mut self.nodes[p as usize];
+                    node.bounds[node.side_of(Ref::leaf(id))] = bound;
+                }
+                cost = self.refit_pass(None, &mut Vec::new(), &mut Vec::new());
             }
-            for &(id, bound) in jumped {
-                self.insert_leaf(id, bound, &bound);
-            }
-            frame.reinserted = jumped.len();
-        } else if held {
-            // Many: bodies falling faster than their size, and their
-            // neighbours with them. Reinserting them all, or rebuilding the
-            // tree each such frame, cost more than the pair search lost to
-            // a refit in place: the staged rebuilds keep up with them.
-            for &(id, bound) in jumped {
-                let p = self.leaf_parents[id as usize];
-                let node = &mut self.nodes[p as usize];
-                node.bounds[node.side_of(Ref::leaf(id))] = bound;
-            }
-            cost = self.refit_pass(None, &mut Vec::new(), &mut Vec::new());
+            self.reinsert(&[], stale, frame);
         }
         if moved.len() * 2 > self.len {
             self.changes.mark_all();
@@ -233,13 +238,36 @@ impl<B: Bound> Tree<B> {
             Some(Installed::Staged { stale, after_mass }) => {
                 self.after_install(jumped, stale, after_mass, cost, frame)
             }
-            None => self.upkeep_staged(jumped, mass, cost, frame),
+            None => self.upkeep_staged(jumped, mass, cost),
         }
     }
 
-    /// After a staged rebuild's install and the refit: the leaves that
-    /// jumped while it was built (`stale`) go where they now are, as this
-    /// frame's `jumped` did, and the refit's `cost` is the new baseline.
+    /// Reinserts the leaves placed where they no longer are: this frame's
+    /// `jumped`, with their new bounds (the refit kept their old), and the
+    /// `stale` ids of an install, sorted, that are not among them. All are
+    /// taken out before any goes back: inserted while others still stretch
+    /// their ancestors, each would be placed by bounds that are not there
+    /// (a trickle of teleports, reinserted one by one at an install, left
+    /// the tree at twice a fresh build's SAH cost).
+    fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], frame: &mut Frame) {
+        let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
+        now.sort_unstable();
+        let mut out = jumped.to_vec();
+        for &(id, _) in jumped {
+            self.remove_leaf(id);
+        }
+        for &id in stale.iter().filter(|id| now.binary_search(id).is_err()) {
+            out.push((id, self.remove_leaf(id)));
+        }
+        for &(id, bound) in &out {
+            self.insert_leaf(id, bound, &bound);
+        }
+        frame.reinserted += out.len();
+    }
+
+    /// After a staged rebuild's install and the refit (which reinserted the
+    /// leaves that jumped while it was built): the refit's `cost` is the new
+    /// baseline.
     /// When mass motion went on while it was built (`stale` is `None`), the
     /// topology is out of date as it lands: its cost is no baseline, and the
     /// next build starts at once. So does one more, when the first build
@@ -259,36 +287,36 @@ impl<B: Bound> Tree<B> {
         let Some(stale) = stale else {
             return self.advance_staged(jumped, self.upkeep.mass_motion, true);
         };
-        let settling = after_mass && !stale.is_empty();
-        // This frame's jumps are in place already.
-        let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
-        now.sort_unstable();
-        for id in stale.into_iter().filter(|id| now.binary_search(id).is_err()) {
-            let bound = self.remove_leaf(id);
-            self.insert_leaf(id, bound, &bound);
-            frame.reinserted += 1;
-        }
-        if settling {
+        if after_mass && !stale.is_empty() {
             self.advance_staged(jumped, self.upkeep.mass_motion, false);
-        } else {
+        } else if stale.is_empty() {
             self.upkeep.built_cost = cost;
+        } else {
+            // The refit measured the stale leaves stretched across their
+            // gaps: as a baseline, that cost would put the next rebuild off
+            // (a trickle of teleports: for good).
+            self.upkeep.built_cost = self.sah_cost();
         }
     }
 
     /// The staged rebuild's step after a refit of `cost`, or its start when
     /// the cost has drifted. `mass` says that this frame's jumps were many.
-    fn upkeep_staged(&mut self, jumped: &[(u32, B)], mass: bool, cost: f64, frame: &mut Frame) {
+    fn upkeep_staged(&mut self, jumped: &[(u32, B)], mass: bool, cost: f64) {
         let drifted =
             |share: f64| cost > self.upkeep.built_cost * (1.0 + self.config.drift * share);
         if self.staging() {
             self.advance_staged(jumped, mass, false);
         } else if !mass && jumped.len() * STAGED_FRAMES * MANY_JUMPS > self.len {
-            // Leaves jump so often, each on its own, that a staged rebuild
-            // would find too many of them placed where they were when it
-            // began: in one go.
+            // Leaves jump so often, each on its own, that a build staged one
+            // step a frame would find too many of them placed where they
+            // were when it began: it takes three steps a frame (on 100 000
+            // leaves with 1 000 teleports a frame, 3.4 and 4.3 ms added to
+            // two frames, then 4.3 for the install and its 3 000
+            // reinsertions, where the rebuild in one go added 12 to one
+            // frame). It starts at the full drift: it lands soon after.
             if drifted(1.0) {
-                self.rebuild();
-                frame.rebuilt = self.len;
+                self.staged = Some(Box::new(Staged::new(TRICKLE_PACE)));
+                self.advance_staged(jumped, mass, false);
             }
         } else if drifted(DRIFT_STAGED) {
             // In one go, a rebuild adds about three refits to its frame
@@ -484,7 +512,8 @@ impl<B: Bound> Tree<B> {
 /// tree rebuilt every such frame (and no frame paid for a rebuild). Over
 /// a staged rebuild's frames, in a trickle (teleports), they would cost
 /// more to reinsert at its install than a rebuild in one go (on 100 000
-/// leaves, a rebuild costs about as much as 5 000 reinsertions).
+/// leaves, a rebuild costs about as much as 5 000 reinsertions): the
+/// rebuild then takes fewer frames.
 pub(crate) const MANY_JUMPS: usize = 16;
 /// A staged rebuild starts when the SAH cost has drifted this fraction of
 /// [`Config::drift`](crate::Config) above its cost after the last build:
