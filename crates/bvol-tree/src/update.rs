@@ -262,18 +262,16 @@ impl<B: Bound> Tree<B> {
     fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], frame: &mut Frame) {
         let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
         now.sort_unstable();
+        let ids: Vec<u32> = jumped.iter().map(|j| j.0).chain(stale.iter().copied()).collect();
         let mut out = jumped.to_vec();
-        for (k, &(id, _)) in jumped.iter().enumerate() {
-            if let Some(&(later, _)) = jumped.get(k + REMOVE_AHEAD) {
+        for (k, &id) in ids.iter().enumerate() {
+            if let Some(&later) = ids.get(k + REMOVE_AHEAD) {
                 self.prefetch_leaf(later);
             }
-            self.remove_leaf(id);
-        }
-        for (k, &id) in stale.iter().enumerate() {
-            if let Some(&later) = stale.get(k + REMOVE_AHEAD) {
-                self.prefetch_leaf(later);
-            }
-            if now.binary_search(&id).is_err() {
+            // A jump keeps its new bound; a stale leaf keeps the one it has.
+            if k < jumped.len() {
+                self.remove_leaf(id);
+            } else if now.binary_search(&id).is_err() {
                 out.push((id, self.remove_leaf(id)));
             }
         }
