@@ -103,12 +103,14 @@ impl<B: Bound> Tree<B> {
             }
         }
         // Every id below the tree's id range's end is in it when the tree
-        // holds as many leaves as that range: then none is new.
-        let full = self.len == self.leaf_parents.len() && bounds.len() <= self.len;
-        for id in (0..bounds.len() as u32).filter(|_| !full) {
-            if !self.contains(id) {
-                self.insert(id, bounds[id as usize])?;
-                frame.inserted += 1;
+        // holds as many leaves as that range: then none is new, and the pass
+        // looking for new ones is skipped.
+        if self.len != self.leaf_parents.len() || bounds.len() > self.len {
+            for id in 0..bounds.len() as u32 {
+                if !self.contains(id) {
+                    self.insert(id, bounds[id as usize])?;
+                    frame.inserted += 1;
+                }
             }
         }
         self.upkeep.moved_fraction = frame.moved as f32 / self.len.max(1) as f32;
@@ -260,8 +262,13 @@ impl<B: Bound> Tree<B> {
     /// (a trickle of teleports, reinserted one by one at an install, left
     /// the tree at twice a fresh build's SAH cost).
     fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], frame: &mut Frame) {
-        let mut now: Vec<u32> = jumped.iter().map(|j| j.0).collect();
-        now.sort_unstable();
+        // This frame's jumps, sorted, to tell the stale leaves among them:
+        // only an install has stale leaves.
+        let mut now: Vec<u32> = Vec::new();
+        if !stale.is_empty() {
+            now.extend(jumped.iter().map(|j| j.0));
+            now.sort_unstable();
+        }
         let ids: Vec<u32> = jumped.iter().map(|j| j.0).chain(stale.iter().copied()).collect();
         let mut out = jumped.to_vec();
         for (k, &id) in ids.iter().enumerate() {
