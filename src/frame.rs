@@ -226,6 +226,10 @@ impl World {
         for list in [&mut *moving, &mut *resting, &mut *new_moving, &mut *new_resting] {
             list.clear();
         }
+        // Where many moved, the moving tree reads its leaves' boxes from the
+        // slot array, in its own order: a list of them, placed a leaf at a
+        // time wherever each one's parent lies, cost more.
+        let dense = refit.len() * DENSE_SHARE >= self.moving.len();
         for &slot in refit {
             let leaf = self.bodies.leaves[slot as usize];
             let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
@@ -234,11 +238,19 @@ impl World {
             } else {
                 (&self.resting, &mut *resting, &mut *new_resting)
             };
-            if tree.contains(slot) { moved } else { new }.push((slot, leaf));
+            if !tree.contains(slot) {
+                new.push((slot, leaf));
+            } else if !(dynamic && dense) {
+                moved.push((slot, leaf));
+            }
         }
         // Every id is live, in its tree or new to it, and every box finite:
         // none of these can fail.
-        self.moving.update_moved(moving).ok();
+        if dense {
+            self.moving.update_from(&self.bodies.leaves).ok();
+        } else {
+            self.moving.update_moved(moving).ok();
+        }
         self.resting.update_moved(resting).ok();
         self.moving.insert_many(new_moving).ok();
         self.resting.insert_many(new_resting).ok();
@@ -392,6 +404,10 @@ fn sort_by_slot(
         begin = end;
     }
 }
+
+/// The moving tree reads every leaf's box from the slot array when at least
+/// one body in this many of those it holds was refit (see `update_trees`).
+const DENSE_SHARE: usize = 2;
 
 /// Runs of [`sort_by_slot`] longer than this take the library's sort.
 const SHORT_RUN: usize = 16;

@@ -35,6 +35,15 @@ enum Op<B> {
         percent: u8,
         seed: u64,
     },
+    /// A frame update over a slice of ids `0..len` that also holds ids not
+    /// in the tree (their entries not valid bounds, which must not be
+    /// read): each present leaf moves with probability `percent`%, a tenth
+    /// of those teleport.
+    From {
+        len: u32,
+        percent: u8,
+        seed: u64,
+    },
     Rebuild,
     Refit,
     Optimize,
@@ -61,6 +70,7 @@ fn op<B: TestBound>() -> impl Strategy<Value = Op<B>> {
         2 => (id.clone(), any_bound::<B>()).prop_map(|(i, b)| Op::Set(i, b)),
         3 => (0..=IDS, 0u8..=100, any::<u64>()).prop_map(|(len, percent, seed)| Op::Frame { len, percent, seed }),
         3 => (0u8..=100, any::<u64>()).prop_map(|(percent, seed)| Op::Moved { percent, seed }),
+        3 => (0..=IDS, 0u8..=100, any::<u64>()).prop_map(|(len, percent, seed)| Op::From { len, percent, seed }),
         1 => Just(Op::Rebuild),
         1 => Just(Op::Refit),
         1 => Just(Op::Optimize),
@@ -164,6 +174,7 @@ impl<B: TestBound> Check<B> {
             Op::Set(id, b) => self.set_bound(*id, |_| *b)?,
             Op::Frame { len, percent, seed } => self.frame(*len, *percent, *seed)?,
             Op::Moved { percent, seed } => self.moved(*percent, *seed)?,
+            Op::From { len, percent, seed } => self.from(*len, *percent, *seed)?,
             Op::Rebuild => self.tree.rebuild(),
             Op::Refit => self.tree.refit(),
             Op::Optimize => {
@@ -251,6 +262,40 @@ impl<B: TestBound> Check<B> {
         if let Some(absent) = (0..IDS).find(|&i| self.model[i as usize].is_none()) {
             let any = B::make(Vec3::ZERO, Vec3::ONE);
             prop_assert!(self.tree.update_moved(&[(absent, any)]).is_err());
+        }
+        Ok(())
+    }
+
+    fn from(&mut self, len: u32, percent: u8, seed: u64) -> Result<(), TestCaseError> {
+        let mut rng = Mix(seed);
+        let not_valid = B::make(Vec3::NAN, Vec3::ONE);
+        let bounds: Vec<B> = (0..len as usize)
+            .map(|i| match self.model[i] {
+                Some(b) if rng.below(100) < percent as u64 => moved(b, &mut rng),
+                Some(b) => b,
+                None => not_valid,
+            })
+            .collect();
+        // A present leaf's bound not valid: an error naming it, and nothing
+        // changes (the check after the step compares the tree with the model).
+        if let Some(id) = (0..len).find(|&i| self.model[i as usize].is_some()) {
+            let mut bad = bounds.clone();
+            bad[id as usize] = not_valid;
+            let named = match self.tree.update_from(&bad) {
+                Err(TreeError::InvalidBound { id, .. }) => Some(id),
+                _ => None,
+            };
+            prop_assert_eq!(named, Some(id));
+        }
+        let frame = self.tree.update_from(&bounds).unwrap();
+        let changed =
+            (0..len as usize).filter(|&i| self.model[i].is_some_and(|b| b != bounds[i])).count();
+        prop_assert_eq!(frame.inserted, 0);
+        prop_assert_eq!(frame.moved, changed);
+        for (i, b) in bounds.iter().enumerate() {
+            if self.model[i].is_some() {
+                self.model[i] = Some(*b);
+            }
         }
         Ok(())
     }
