@@ -4,7 +4,7 @@
 
 use std::sync::Arc;
 
-use bvol_narrow::{Contact, WarmStart};
+use bvol_narrow::WarmStart;
 use bvol_tree::Tree;
 use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere, prefetch};
 use glam::Vec3;
@@ -72,8 +72,8 @@ pub(crate) struct Scratch {
     /// The pair states' other buffer: the narrow phase moves last frame's
     /// states into it, and keeps last frame's, emptied, for the next.
     pub(crate) states: PairStates,
-    /// Each of those pairs' contact, if it touches.
-    pub(crate) contacts: Vec<Option<Contact>>,
+    /// The narrow phase's events of each run of pairs, on several threads.
+    pub(crate) runs: Vec<Vec<ContactEvent>>,
 }
 
 /// Pairs' states by `(lower slot, higher slot)`, sorted by it.
@@ -179,7 +179,7 @@ impl World {
             !gone
         });
         for (a, b) in orphaned {
-            self.orphaned.push(ContactEvent::ended(self.id_of(a), self.id_of(b)));
+            self.orphaned.push(self.bodies.ended(a, b));
         }
         let b = &mut self.bodies;
         b.shapes[i] = None;
@@ -297,7 +297,7 @@ impl World {
             [self.moving.ray_cast(ray, max_t, exact), self.resting.ray_cast(ray, max_t, exact)];
         let (slot, t) =
             hits.into_iter().flatten().min_by(|a, b| a.1.total_cmp(&b.1).then(a.0.cmp(&b.0)))?;
-        let body = self.id_of(slot);
+        let body = self.bodies.id_of(slot);
         let user_data = self.bodies.user_data[slot as usize];
         Some(RayHit { body, t, point: ray.origin + ray.direction * t, user_data })
     }
@@ -336,11 +336,6 @@ impl World {
     #[inline]
     fn live(&self, id: BodyId) -> bool {
         self.bodies.generations.get(id.index as usize) == Some(&id.generation)
-    }
-
-    /// The handle of the body in `slot` now.
-    pub(crate) fn id_of(&self, slot: u32) -> BodyId {
-        BodyId { index: slot, generation: self.bodies.generations[slot as usize] }
     }
 
     /// The tree that holds bodies of `kind`.
