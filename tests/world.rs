@@ -11,8 +11,8 @@ use std::sync::Arc;
 use bvol::narrow::{WarmStart, hull_hull, sphere_hull, sphere_sphere};
 use bvol::volumes::{Pose, Ray};
 use bvol::{
-    BodyDesc, BodyId, BodyKind, EventKind, FitOptions, MeshProblem, Part, Shape, ShapeError, World,
-    WorldError,
+    BodyDesc, BodyId, BodyKind, ContactEvent, EventKind, FitOptions, MeshProblem, Part, Shape,
+    ShapeError, World, WorldError,
 };
 use glam::{Quat, Vec3};
 use rand::rngs::SmallRng;
@@ -270,23 +270,49 @@ fn obb_stage_removes_candidates_the_tree_lets_through() {
     assert_eq!(touching_of(&world), brute_force(&world));
 }
 
+/// The same events in the same order on one and two threads, through
+/// frames where half the bodies fall asleep (their touching pairs among
+/// themselves kept, untested) and wake again.
 #[test]
 fn same_events_on_one_and_two_threads() {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
         pool.install(|| {
             let (mut world, ids, mut rng) = random_world(3000, 6);
+            let sleepers: Vec<BodyId> = ids
+                .iter()
+                .copied()
+                .filter(|&id| id.index() % 2 == 0 && world.kind(id).unwrap() == BodyKind::Dynamic)
+                .collect();
             let mut all = Vec::new();
-            for _ in 0..4 {
+            let mut persisting_on_waking = 0;
+            for f in 0..7 {
+                let kind = match f {
+                    3 => BodyKind::Sleeping,
+                    5 => BodyKind::Dynamic,
+                    _ => world.kind(sleepers[0]).unwrap(),
+                };
+                sleepers.iter().for_each(|&id| world.set_kind(id, kind).unwrap());
                 world.update();
                 all.extend_from_slice(world.events());
+                if f == 5 {
+                    let both =
+                        |e: &ContactEvent| sleepers.contains(&e.a) && sleepers.contains(&e.b);
+                    persisting_on_waking = world
+                        .events()
+                        .iter()
+                        .filter(|e| e.kind == EventKind::Persisting && both(e))
+                        .count();
+                }
                 step(&mut world, &ids, &mut rng);
             }
-            all
+            (all, persisting_on_waking)
         })
     };
     let (one, two) = (run(1), run(2));
-    assert!(one.len() > 1000);
+    assert!(one.0.len() > 1000);
+    // Pairs of sleepers kept their contact while asleep.
+    assert!(one.1 > 10, "{} kept pairs woke touching", one.1);
     assert_eq!(one, two);
 }
 
