@@ -59,16 +59,17 @@ pub struct World {
 pub(crate) struct Scratch {
     /// The refit bodies' leaves: moved and new, of each tree.
     pub(crate) leaves: [Vec<(u32, Aabb)>; 4],
-    /// The trees' overlapping pairs, before sorting.
+    /// The trees' overlapping pairs that the filters allow, in the trees'
+    /// order.
     pub(crate) found: Vec<(u32, u32)>,
-    /// The counting sort's slot starts.
-    pub(crate) starts: Vec<u32>,
-    /// The candidate pairs, sorted.
-    pub(crate) candidates: Vec<(u32, u32)>,
     /// Those whose spheres overlap.
     pub(crate) near: Vec<(u32, u32)>,
     /// Those whose OBBs overlap too.
     pub(crate) nearer: Vec<(u32, u32)>,
+    /// The counting sort's slot starts.
+    pub(crate) starts: Vec<u32>,
+    /// Those sorted.
+    pub(crate) sorted: Vec<(u32, u32)>,
     /// The pair states' other buffer: the narrow phase moves last frame's
     /// states into it, and keeps last frame's, emptied, for the next.
     pub(crate) states: PairStates,
