@@ -121,6 +121,8 @@ pub(crate) struct Bodies {
     /// hold slots that are free.
     pub(crate) removed: bool,
     pub(crate) count: usize,
+    /// Live bodies whose filter can turn a pair away (see `filters`).
+    pub(crate) filtering: usize,
 }
 
 impl World {
@@ -163,6 +165,7 @@ impl World {
         b.masks[i] = desc.mask;
         b.shapes[i] = Some(desc.shape);
         b.count += 1;
+        b.filtering += usize::from(b.filters(index));
         b.mark_dirty(index);
         Ok(id)
     }
@@ -183,6 +186,7 @@ impl World {
             self.orphaned.push(self.bodies.ended(a, b));
         }
         let b = &mut self.bodies;
+        b.filtering -= usize::from(b.filters(id.index));
         b.shapes[i] = None;
         b.removed = true;
         // Even again: no handle given out matches a free slot.
@@ -372,6 +376,13 @@ impl Bodies {
         self.obbs.push(Obb::default());
         self.leaves.push(Aabb::default());
         self.is_dirty.push(false);
+    }
+
+    /// Whether the body in `slot` can turn a pair away by its filter: it
+    /// meets every body only when it is on some layer and collides with all.
+    pub(crate) fn filters(&self, slot: u32) -> bool {
+        let i = slot as usize;
+        self.layers[i] == 0 || self.masks[i] != u32::MAX
     }
 
     /// Queues a slot for the next update's refit.
