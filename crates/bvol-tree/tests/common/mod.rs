@@ -7,6 +7,11 @@ use bvol_volumes::{Aabb, Ray, Sphere};
 use glam::Vec3;
 use proptest::prelude::*;
 
+/// `f` run on a rayon pool of `threads` threads.
+pub fn on_threads<R: Send>(threads: usize, f: impl FnOnce() -> R + Send) -> R {
+    rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap().install(f)
+}
+
 /// A bound type the tests run on, with the answers brute force gives.
 pub trait TestBound: Bound {
     /// A bound from a corner/centre `p` and a size `s >= 0` per axis.
