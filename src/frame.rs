@@ -318,7 +318,7 @@ impl World {
         let orphans = !self.orphaned.is_empty();
         events.append(&mut self.orphaned);
         let bodies = &self.bodies;
-        let touching = if rayon::current_num_threads() == 1 {
+        let touching = if rayon::current_num_threads() == 1 || next.is_empty() {
             bodies.events(&mut next, pairs, &ended, &mut events)
         } else {
             bodies.events_in_runs(&mut next, pairs, &ended, runs, &mut events)
@@ -448,9 +448,10 @@ impl Bodies {
         d.length_squared() <= r * r
     }
 
-    /// [`Bodies::events`] over `states` (with their `pairs`) in runs, a rayon
-    /// task each, each with the `ended` pairs whose keys fall in its run
-    /// merged in: the events come out sorted with no sort, and the runs'
+    /// [`Bodies::events`] over `states` (not empty; with their `pairs`) in
+    /// runs, a rayon task each, each with the `ended` pairs whose keys fall
+    /// in its run merged in (the first run's from the start, the last's to
+    /// the end): the events come out sorted with no sort, and the runs'
     /// lists (in `runs`, buffers kept from frame to frame) are joined in
     /// order, so they are the same on any number of threads. (One pass after
     /// the tests, over their contacts gathered in a list, took a tenth of the
@@ -480,9 +481,6 @@ impl Bodies {
                 self.events(chunk, &pairs[r * run..], gone, out)
             })
             .sum();
-        if runs.is_empty() {
-            events.extend(ended.iter().map(|&(a, b)| self.ended(a, b)));
-        }
         runs.iter().for_each(|out| events.extend_from_slice(out));
         touching
     }

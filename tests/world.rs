@@ -484,21 +484,20 @@ fn layers_and_masks_filter_pairs_both_ways() {
     let mut world = World::new();
     let cube = || Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
     let at = |x: f32| Pose::new(Vec3::X * x, Quat::IDENTITY);
-    let a = world.add_body(BodyDesc::new(cube(), at(0.0)).with_filter(1, u32::MAX)).unwrap();
-    let b = world.add_body(BodyDesc::new(cube(), at(0.3)).with_filter(2, !1)).unwrap();
-    let c = world.add_body(BodyDesc::new(cube(), at(0.6)).with_filter(4, u32::MAX)).unwrap();
-    world.update();
-    let pairs: BTreeSet<(BodyId, BodyId)> = world.events().iter().map(|e| (e.a, e.b)).collect();
-    // a-b: b's mask excludes a's layer; a-c and b-c collide.
-    assert_eq!(pairs, BTreeSet::from([(a, c), (b, c)]));
-    assert_eq!(world.stats().tree_candidates, 2, "filtered before the stages");
-    // A body with a layer and colliding with all (c) filters nothing; with
-    // the filtering one gone the others meet, and with a new one that
-    // collides with nothing, they are turned away again.
     let pairs = |world: &World| -> BTreeSet<(BodyId, BodyId)> {
         let touching = world.events().iter().filter(|e| e.kind != EventKind::Ended);
         touching.map(|e| (e.a, e.b)).collect()
     };
+    let a = world.add_body(BodyDesc::new(cube(), at(0.0)).with_filter(1, u32::MAX)).unwrap();
+    let b = world.add_body(BodyDesc::new(cube(), at(0.3)).with_filter(2, !1)).unwrap();
+    let c = world.add_body(BodyDesc::new(cube(), at(0.6)).with_filter(4, u32::MAX)).unwrap();
+    world.update();
+    // a-b: b's mask excludes a's layer; a-c and b-c collide.
+    assert_eq!(pairs(&world), BTreeSet::from([(a, c), (b, c)]));
+    assert_eq!(world.stats().tree_candidates, 2, "filtered before the stages");
+    // A body with a layer and colliding with all (c) filters nothing; with
+    // the filtering one gone the others meet, and with a new one that
+    // collides with nothing, they are turned away again.
     world.remove_body(c).unwrap();
     world.remove_body(b).unwrap();
     let d = world.add_body(BodyDesc::new(cube(), at(0.3))).unwrap();
