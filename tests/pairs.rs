@@ -89,6 +89,10 @@ fn bench_pairs_reads_a_trace_and_prints_its_digest() {
         assert_eq!(row[..2], ["3000", "5"]);
         assert_eq!(row[6], threads);
         assert_eq!(row[7..10].join("\t"), expected.to_string());
+        // The update's share of the frame is a part of the mean frame.
+        assert_eq!(header[13], "update_mean_ms");
+        let (update, mean): (f64, f64) = (row[13].parse().unwrap(), row[5].parse().unwrap());
+        assert!(update > 0.0 && update <= mean, "update {update} ms of a {mean} ms frame");
     }
     // A broken trace is a one-line error naming the file, exit code 2.
     std::fs::write(&path, b"BPHF\x01\0\0\0").unwrap();

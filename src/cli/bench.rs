@@ -64,6 +64,9 @@ struct Run {
     pairs: u64,
     build_ms: f64,
     frame_ms: Vec<f64>,
+    /// The part of `frame_ms` that `Tree::update` took, summed over frames
+    /// 1.. (the rest is the pair search, or the pair set's update).
+    update_ms: f64,
     digest: PairDigest,
     bytes: usize,
     /// Began and ended events over all frames (with `--events`).
@@ -129,6 +132,7 @@ fn measure(
         pairs: 0,
         build_ms: 0.0,
         frame_ms: Vec::with_capacity(count),
+        update_ms: 0.0,
         digest: PairDigest::default(),
         bytes: 0,
         began: 0,
@@ -144,6 +148,7 @@ fn measure(
             tree = Tree::from_bounds(boxes).map_err(|e| format!("frame 0: {e}"))?;
         } else {
             tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?;
+            run.update_ms += started.elapsed().as_secs_f64() * 1e3;
         }
         if events {
             set.update(&mut tree);
@@ -183,13 +188,14 @@ fn print(run: &Run, threads: usize, source: &str, events: bool) {
         if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
     // The worst frame: where a rebuild or a burst of reinsertions shows.
     let max = sorted.last().copied().unwrap_or(f64::NAN);
+    let update_mean = run.update_ms / sorted.len() as f64;
     let avg_pairs = run.pairs as f64 / run.frames as f64;
     let per_body = run.bytes as f64 / run.n.max(1) as f64;
     let mut header = String::from(
-        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body\tmax_ms",
+        "n\tframes\tavg_pairs\tbuild_ms\tmedian_ms\tmean_ms\tthreads\tcount\th1\th2\tscene\ttree_bytes_per_body\tmax_ms\tupdate_mean_ms",
     );
     let mut row = format!(
-        "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}\t{max:.3}",
+        "{}\t{}\t{avg_pairs:.1}\t{:.3}\t{median:.3}\t{mean:.3}\t{threads}\t{}\t{source}\t{per_body:.1}\t{max:.3}\t{update_mean:.3}",
         run.n, run.frames, run.build_ms, run.digest
     );
     if events {
