@@ -317,6 +317,22 @@ fn same_events_on_one_and_two_threads() {
     assert_eq!(one, two);
 }
 
+/// The nearest of `ids` that `ray` meets within `max_t`, by brute force:
+/// every body's shape in its own frame (ties to the lower slot).
+fn nearest(
+    world: &World,
+    ids: impl Iterator<Item = BodyId>,
+    ray: &Ray,
+    max_t: f32,
+) -> Option<(f32, BodyId)> {
+    ids.filter_map(|id| {
+        let inv = world.pose(id).unwrap().inverse();
+        let local = Ray::new(inv.transform_point(ray.origin), inv.transform_vector(ray.direction));
+        Some((world.shape(id).unwrap().ray_entry(&local, max_t)?, id))
+    })
+    .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.index().cmp(&b.1.index())))
+}
+
 #[test]
 fn ray_cast_finds_the_nearest_body() {
     let (mut world, ids, mut rng) = random_world(500, 7);
@@ -327,16 +343,7 @@ fn ray_cast_finds_the_nearest_body() {
         let origin = Vec3::new(rng.random(), rng.random(), rng.random()) * side * 1.5 - side * 0.25;
         let to = Vec3::new(rng.random(), rng.random(), rng.random()) * side;
         let ray = Ray::new(origin, (to - origin).normalize());
-        // Brute force: every body's shape in its own frame.
-        let expected = ids
-            .iter()
-            .filter_map(|&id| {
-                let inv = world.pose(id).unwrap().inverse();
-                let local =
-                    Ray::new(inv.transform_point(ray.origin), inv.transform_vector(ray.direction));
-                Some((world.shape(id).unwrap().ray_entry(&local, 1e3)?, id))
-            })
-            .min_by(|a, b| a.0.total_cmp(&b.0).then(a.1.index().cmp(&b.1.index())));
+        let expected = nearest(&world, ids.iter().copied(), &ray, 1e3);
         let got = world.ray_cast(&ray, 1e3);
         match (got, expected) {
             (Some(h), Some((t, id))) => {
@@ -550,8 +557,8 @@ enum Op {
     Move(usize, Pose),
     /// Moves every live body by a small step, in one `set_poses`.
     Nudge(Vec3),
-    /// Runs a frame and checks it.
-    Update,
+    /// Runs a frame and checks it, and a ray cast from `from` towards `to`.
+    Update { from: Vec3, to: Vec3 },
 }
 
 const KINDS: [BodyKind; 3] = [BodyKind::Dynamic, BodyKind::Static, BodyKind::Sleeping];
@@ -575,7 +582,8 @@ fn any_op() -> impl Strategy<Value = Op> {
         1 => (any::<usize>(), 0..3usize).prop_map(|(k, kind)| Op::SetKind(k, kind)),
         2 => (any::<usize>(), any_pose()).prop_map(|(k, pose)| Op::Move(k, pose)),
         1 => prop::array::uniform3(-0.3f32..0.3).prop_map(|d| Op::Nudge(Vec3::from_array(d))),
-        3 => Just(Op::Update),
+        3 => (prop::array::uniform3(-1.0f32..3.5), prop::array::uniform3(0.0f32..2.5))
+            .prop_map(|(from, to)| Op::Update { from: from.into(), to: to.into() }),
     ]
 }
 
@@ -642,7 +650,8 @@ proptest! {
     /// the events are exactly those of an all-pairs hull test against the
     /// pairs touching at the update before (resting pairs kept untested,
     /// removed bodies' pairs ended, reused slots told apart by their
-    /// handles), in slot order, with a contact on each but the ended.
+    /// handles), in slot order, with a contact on each but the ended; and
+    /// a ray cast finds the nearest body that every shape tested finds.
     #[test]
     fn events_match_an_all_pairs_model_through_any_edits(
         ops in prop::collection::vec(any_op(), 1..40),
@@ -682,7 +691,7 @@ proptest! {
                         .collect();
                     world.set_poses(&ids, &poses).unwrap();
                 }
-                Op::Update => {
+                Op::Update { from, to } => {
                     world.update();
                     let kind = |k: EventKind| match k {
                         EventKind::Began => 0,
@@ -701,6 +710,15 @@ proptest! {
                     let set: BTreeSet<_> = got.iter().copied().collect();
                     prop_assert_eq!(set.len(), got.len(), "an event twice");
                     prop_assert_eq!(set, model.expected(&world));
+                    if let Some(ray) = (to - from).try_normalize().map(|d| Ray::new(from, d)) {
+                        let ids = model.live.iter().map(|&(id, _)| id);
+                        let want = nearest(&world, ids, &ray, 10.0).map(|(t, _)| t);
+                        let got = world.ray_cast(&ray, 10.0).map(|h| h.t);
+                        prop_assert_eq!(got.is_some(), want.is_some(), "{:?} vs {:?}", got, want);
+                        if let (Some(t), Some(want)) = (got, want) {
+                            prop_assert!((t - want).abs() <= 1e-4 * want.max(1.0), "{t} vs {want}");
+                        }
+                    }
                 }
                 _ => {}
             }
