@@ -2,11 +2,34 @@
 //! calls that name them.
 
 use std::fmt;
+use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use bvol_volumes::Pose;
 
 use crate::Shape;
+
+/// The largest magnitude a world takes for a coordinate: of a body's
+/// position, of a shape's vertex in its own frame, of a primitive's size.
+/// Within it every world bound, and every square and area of one, is finite
+/// in f32; beyond it a body's bounds could overflow and the body would be
+/// lost to the trees.
+pub const MAX_COORDINATE: f32 = 1e18;
+
+/// The squared lengths a body's rotation quaternion may have (it need not be
+/// a unit one). Within them the world bounds' f32 rotation, normalised in
+/// f32, is the exact rotation to a few ulps; a longer quaternion's squared
+/// length overflows, and a shorter one's loses its digits, and the bounds
+/// would no longer hold the shape the narrow phase tests.
+pub const ROTATION_LENGTH_SQUARED: RangeInclusive<f32> = 1e-18..=1e18;
+
+/// Whether a world can place a body at `pose`: its position finite and within
+/// [`MAX_COORDINATE`], its rotation's squared length within
+/// [`ROTATION_LENGTH_SQUARED`] (which no NaN or infinite one is).
+pub(crate) fn placeable(pose: &Pose) -> bool {
+    pose.position.abs().cmple(glam::Vec3::splat(MAX_COORDINATE)).all()
+        && ROTATION_LENGTH_SQUARED.contains(&pose.rotation.length_squared())
+}
 
 /// A body in a [`World`](crate::World): its slot and the slot's generation,
 /// so that a handle to a removed body is never taken for the body that
@@ -94,7 +117,10 @@ impl BodyDesc {
 pub enum WorldError {
     /// The body was removed, or never was in this world.
     UnknownBody(BodyId),
-    /// A pose with a NaN or infinite value, or a zero rotation.
+    /// A pose a world cannot place a body at: a position that is not finite
+    /// or beyond [`MAX_COORDINATE`], or a rotation whose squared length is
+    /// not within [`ROTATION_LENGTH_SQUARED`] (a NaN, infinite or zero one
+    /// among them).
     BadPose {
         /// The body it was for (its slot when it was being added).
         body: BodyId,
@@ -117,7 +143,12 @@ impl fmt::Display for WorldError {
         match self {
             WorldError::UnknownBody(id) => write!(f, "{id}: no such body in this world"),
             WorldError::BadPose { body, pose } => {
-                write!(f, "{body}: pose has a NaN or infinite value or a zero rotation: {pose:?}")
+                write!(
+                    f,
+                    "{body}: pose {pose:?} has a position that is not finite or beyond \
+                     ±{MAX_COORDINATE:e}, or a rotation of squared length outside \
+                     {ROTATION_LENGTH_SQUARED:?}"
+                )
             }
             WorldError::LengthMismatch { bodies, poses } => {
                 write!(f, "set_poses: {bodies} bodies but {poses} poses")

@@ -58,7 +58,7 @@ mod shape;
 mod trace;
 mod world;
 
-pub use body::{BodyDesc, BodyId, BodyKind, WorldError};
+pub use body::{BodyDesc, BodyId, BodyKind, MAX_COORDINATE, ROTATION_LENGTH_SQUARED, WorldError};
 pub use bvol_narrow as narrow;
 pub use bvol_tree as tree;
 pub use bvol_volumes as volumes;

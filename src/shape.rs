@@ -9,6 +9,7 @@ use bvol_narrow::Polyhedron;
 use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
 use glam::{DVec3, Vec3};
 
+use crate::body::MAX_COORDINATE;
 use crate::mesh::{Mesh, MeshError, load_obj};
 
 /// The fitting methods of a shape's bounds. The defaults are the tightest:
@@ -85,10 +86,18 @@ pub enum ShapeError {
     },
     /// The points could not be bounded.
     Fit(FitError),
-    /// A primitive's size is not finite and positive.
+    /// A primitive's size is not finite and positive, or beyond
+    /// [`MAX_COORDINATE`].
     BadSize {
         /// The primitive.
         primitive: &'static str,
+    },
+    /// A point has a coordinate beyond [`MAX_COORDINATE`].
+    OutOfRange {
+        /// The part's name (the mesh object's, or the primitive's).
+        part: String,
+        /// The point's index among the part's points.
+        point: usize,
     },
 }
 
@@ -101,8 +110,15 @@ impl fmt::Display for ShapeError {
             }
             ShapeError::Part { part, reason } => write!(f, "part {part:?}: {reason}"),
             ShapeError::Fit(e) => write!(f, "cannot bound the shape: {e}"),
-            ShapeError::BadSize { primitive } => {
-                write!(f, "{primitive}: sizes must be finite and greater than zero")
+            ShapeError::BadSize { primitive } => write!(
+                f,
+                "{primitive}: sizes must be finite, greater than zero and at most {MAX_COORDINATE:e}"
+            ),
+            ShapeError::OutOfRange { part, point } => {
+                write!(
+                    f,
+                    "part {part:?}: point {point} has a coordinate beyond ±{MAX_COORDINATE:e}"
+                )
             }
         }
     }
@@ -164,6 +180,9 @@ impl Shape {
 
     /// A box centred on the origin.
     pub fn cuboid(half_extents: Vec3) -> Result<Shape, ShapeError> {
+        if !(half_extents.cmpgt(Vec3::ZERO).all() && within(half_extents.max_element())) {
+            return Err(ShapeError::BadSize { primitive: "cuboid" });
+        }
         let polyhedron = Polyhedron::cuboid(half_extents)
             .map_err(|reason| ShapeError::Part { part: "cuboid".into(), reason })?;
         let hull = ConvexHull::new(polyhedron.vertices())?;
@@ -175,7 +194,7 @@ impl Shape {
 
     /// A ball of `radius` centred on the origin, tested exactly.
     pub fn ball(radius: f32) -> Result<Shape, ShapeError> {
-        if !(radius.is_finite() && radius > 0.0) {
+        if !(radius > 0.0 && within(radius)) {
             return Err(ShapeError::BadSize { primitive: "ball" });
         }
         Self::from_parts(vec![Part::Ball(Sphere::new(Vec3::ZERO, radius))], FitOptions::default())
@@ -184,7 +203,7 @@ impl Shape {
     /// A capsule along y (a segment of half length `half_height` swept by a
     /// ball of `radius`), as a convex hull of its two capped ends.
     pub fn capsule(radius: f32, half_height: f32) -> Result<Shape, ShapeError> {
-        if !(radius.is_finite() && radius > 0.0 && half_height.is_finite() && half_height >= 0.0) {
+        if !(radius > 0.0 && half_height >= 0.0 && within(radius + half_height)) {
             return Err(ShapeError::BadSize { primitive: "capsule" });
         }
         let points: Vec<Vec3> = fibonacci_sphere(CAP_POINTS)
@@ -196,7 +215,7 @@ impl Shape {
     /// A regular tetrahedron with its corners at distance `radius` from the
     /// origin.
     pub fn tetrahedron(radius: f32) -> Result<Shape, ShapeError> {
-        if !(radius.is_finite() && radius > 0.0) {
+        if !(radius > 0.0 && within(radius)) {
             return Err(ShapeError::BadSize { primitive: "tetrahedron" });
         }
         let s = radius / 3f32.sqrt();
@@ -256,8 +275,19 @@ impl Shape {
     }
 }
 
+/// Whether a size or coordinate's magnitude is at most [`MAX_COORDINATE`]
+/// (NaN is not).
+fn within(x: f32) -> bool {
+    x.abs() <= MAX_COORDINATE
+}
+
 /// The convex part of a point set, named for errors.
 fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
+    // NaN and infinite points are named by the polyhedron's own check.
+    let beyond = |p: &Vec3| p.is_finite() && p.abs().cmpgt(Vec3::splat(MAX_COORDINATE)).any();
+    if let Some(point) = points.iter().position(beyond) {
+        return Err(ShapeError::OutOfRange { part: name.to_owned(), point });
+    }
     let polyhedron = Polyhedron::from_points(points)
         .map_err(|reason| ShapeError::Part { part: name.to_owned(), reason })?;
     let hull = ConvexHull::new(points)?;

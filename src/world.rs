@@ -9,6 +9,7 @@ use bvol_tree::Tree;
 use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere, prefetch};
 use glam::Vec3;
 
+use crate::body::placeable;
 use crate::frame::{BODIES_AHEAD, ContactEvent, FrameStats};
 use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
 
@@ -141,7 +142,8 @@ impl World {
         self.bodies.count == 0
     }
 
-    /// Adds a body. Its bounds enter the trees at the next update.
+    /// Adds a body. Its bounds enter the trees at the next update. Its pose
+    /// must be one a world can place a body at (see [`WorldError::BadPose`]).
     pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyId, WorldError> {
         let b = &mut self.bodies;
         let index = match b.free.last() {
@@ -202,13 +204,14 @@ impl World {
     }
 
     /// Moves many bodies: `poses[k]` is the new pose of `ids[k]`. Every id
-    /// and pose is checked first: on error nothing has moved.
+    /// and pose is checked first (a pose as [`WorldError::BadPose`] says): on
+    /// error nothing has moved.
     pub fn set_poses(&mut self, ids: &[BodyId], poses: &[Pose]) -> Result<(), WorldError> {
         if ids.len() != poses.len() {
             return Err(WorldError::LengthMismatch { bodies: ids.len(), poses: poses.len() });
         }
         // One pass tells whether all are good; the first bad one is named.
-        if let Some(k) = ids.iter().zip(poses).position(|(&id, p)| !self.live(id) || !p.is_finite())
+        if let Some(k) = ids.iter().zip(poses).position(|(&id, p)| !self.live(id) || !placeable(p))
         {
             self.slot(ids[k])?;
             check_pose(ids[k], &poses[k])?;
@@ -393,7 +396,7 @@ impl Bodies {
     }
 }
 
-/// `Ok` when `pose` is finite with a non-zero rotation.
+/// `Ok` when a body can be placed at `pose` (see [`placeable`]).
 fn check_pose(body: BodyId, pose: &Pose) -> Result<(), WorldError> {
-    if pose.is_finite() { Ok(()) } else { Err(WorldError::BadPose { body, pose: *pose }) }
+    if placeable(pose) { Ok(()) } else { Err(WorldError::BadPose { body, pose: *pose }) }
 }

@@ -14,7 +14,7 @@ use bvol::{
     BodyDesc, BodyId, BodyKind, ContactEvent, EventKind, FitOptions, MeshProblem, Part, Shape,
     ShapeError, World, WorldError,
 };
-use glam::{Quat, Vec3};
+use glam::{Quat, Vec3, Vec4};
 use proptest::prelude::*;
 use rand::rngs::SmallRng;
 use rand::{RngExt, SeedableRng};
@@ -396,7 +396,67 @@ fn bad_input_is_a_typed_error_and_changes_nothing() {
     assert!(matches!(Shape::convex(&flat), Err(ShapeError::Part { .. })));
     assert!(matches!(Shape::ball(-1.0), Err(ShapeError::BadSize { .. })));
     assert!(matches!(Shape::capsule(f32::NAN, 1.0), Err(ShapeError::BadSize { .. })));
-    assert!(matches!(Shape::cuboid(Vec3::ZERO), Err(ShapeError::Part { .. })));
+    assert!(matches!(Shape::cuboid(Vec3::ZERO), Err(ShapeError::BadSize { .. })));
+}
+
+/// Up to the limits a world takes, its pairs are the exact test's: a
+/// rotation's quaternion at both ends of `ROTATION_LENGTH_SQUARED` (which
+/// the f32 bounds normalise), and bodies of size 1e17 near
+/// `MAX_COORDINATE`. Beyond them, poses, points and sizes are typed errors
+/// and nothing changes. Before the limits, a quaternion with components of
+/// 1e20 (its squared length beyond f32's range) made bounds that ignored
+/// the rotation, one with components of 1e-20 bounds turned by more than
+/// their rounding allowance, and a shape near f32's largest value bounds
+/// that overflowed: the first and last lost pairs.
+#[test]
+fn coordinates_and_rotations_up_to_the_limits() {
+    let long = Arc::new(Shape::cuboid(Vec3::new(2.0, 0.5, 0.5)).unwrap());
+    let small = Arc::new(Shape::cuboid(Vec3::splat(0.3)).unwrap());
+    // The long box turned 45 degrees about z reaches the small one; unturned
+    // it does not.
+    let turn = Quat::from_rotation_z(std::f32::consts::FRAC_PI_4);
+    let aside = Pose::new(Vec3::new(1.2, 1.2, 0.0), Quat::IDENTITY);
+    for scale in [1.01e-9f32, 1.0, 0.99e9] {
+        let mut world = World::new();
+        let q = Quat::from_vec4(Vec4::from(turn) * scale);
+        assert!(bvol::ROTATION_LENGTH_SQUARED.contains(&q.length_squared()), "{scale}");
+        let a = world.add_body(BodyDesc::new(long.clone(), Pose::new(Vec3::ZERO, q))).unwrap();
+        let b = world.add_body(BodyDesc::new(small.clone(), aside)).unwrap();
+        world.update();
+        assert!(touch(&world, a, b), "{scale}: the exact test");
+        assert_eq!(touching_of(&world), BTreeSet::from([(a.index(), b.index())]), "{scale}");
+    }
+    let huge = Arc::new(Shape::cuboid(Vec3::splat(1e17)).unwrap());
+    for x in [-9e17f32, 8e17] {
+        let mut world = World::new();
+        let at = |x: f32| Pose::new(Vec3::new(x, 0.0, 1e18), turn);
+        let a = world.add_body(BodyDesc::new(huge.clone(), at(x))).unwrap();
+        let b = world.add_body(BodyDesc::new(huge.clone(), at(x + 1.9e17))).unwrap();
+        world.update();
+        assert!(touch(&world, a, b), "{x}: the exact test");
+        assert_eq!(touching_of(&world), BTreeSet::from([(a.index(), b.index())]), "{x}");
+    }
+    // Beyond: typed errors, and nothing moves.
+    let mut world = World::new();
+    let a = world.add_body(BodyDesc::new(small.clone(), aside)).unwrap();
+    let far = Pose::new(Vec3::new(0.0, 2e18, 0.0), Quat::IDENTITY);
+    let long_q = Pose::new(Vec3::ZERO, Quat::from_vec4(Vec4::from(turn) * 1e10));
+    let short_q = Pose::new(Vec3::ZERO, Quat::from_vec4(Vec4::from(turn) * 1e-10));
+    for pose in [far, long_q, short_q] {
+        assert_eq!(world.set_pose(a, pose), Err(WorldError::BadPose { body: a, pose }));
+        let added = world.add_body(BodyDesc::new(small.clone(), pose));
+        assert!(matches!(added, Err(WorldError::BadPose { .. })), "{pose:?}");
+        assert_eq!(world.pose(a).unwrap(), aside);
+    }
+    assert_eq!(world.len(), 1);
+    let points = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(0.0, 0.0, -2e18)];
+    let err = Shape::convex(&points).unwrap_err();
+    assert_eq!(err, ShapeError::OutOfRange { part: "points".into(), point: 3 });
+    assert!(err.to_string().contains("point 3"), "{err}");
+    assert!(matches!(Shape::cuboid(Vec3::splat(2e18)), Err(ShapeError::BadSize { .. })));
+    assert!(matches!(Shape::ball(2e18), Err(ShapeError::BadSize { .. })));
+    assert!(matches!(Shape::capsule(1.0, 2e18), Err(ShapeError::BadSize { .. })));
+    assert!(matches!(Shape::tetrahedron(2e18), Err(ShapeError::BadSize { .. })));
 }
 
 /// A body moved and then removed before the next update leaves nothing

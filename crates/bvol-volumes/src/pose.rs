@@ -22,7 +22,10 @@ pub(crate) const ROTATION_ERROR: f32 = 16.0 * f32::EPSILON;
 pub struct Pose {
     /// Translation, applied after the rotation.
     pub position: Vec3,
-    /// Rotation; expected to be a unit quaternion (it is normalised where used in f64).
+    /// Rotation; expected to be a unit quaternion. Any other is normalised
+    /// where used: in f64 exactly, in f32 (the placed bounds) only while its
+    /// squared length neither overflows nor loses its digits (bvol's World
+    /// takes squared lengths from 1e-18 to 1e18).
     pub rotation: Quat,
 }
 
