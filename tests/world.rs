@@ -26,19 +26,24 @@ fn mesh(name: &str) -> PathBuf {
 /// A mix of shapes: boxes, a rod, a tetrahedron, a capsule, a ball, the
 /// bunny's hull scaled down, and a two-part shape (two objects of one file).
 fn shapes() -> Vec<Arc<Shape>> {
+    shapes_of_size(1.0)
+}
+
+/// [`shapes`] scaled by `s`.
+fn shapes_of_size(s: f32) -> Vec<Arc<Shape>> {
     let bunny = bvol::load_obj(mesh("bunny")).unwrap();
-    let small: Vec<Vec3> = bunny[0].positions.iter().map(|&p| p * 0.1).collect();
+    let small: Vec<Vec3> = bunny[0].positions.iter().map(|&p| p * 0.1 * s).collect();
     let mut two = bvol::Mesh { name: "left".into(), ..Default::default() };
-    two.positions = vec![Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z];
+    two.positions = vec![Vec3::ZERO, Vec3::X * s, Vec3::Y * s, Vec3::Z * s];
     let mut right = two.clone();
     right.name = "right".into();
-    right.positions.iter_mut().for_each(|p| *p += Vec3::new(1.5, 0.0, 0.0));
+    right.positions.iter_mut().for_each(|p| *p += Vec3::new(1.5 * s, 0.0, 0.0));
     vec![
-        Shape::cuboid(Vec3::splat(0.5)).unwrap(),
-        Shape::cuboid(Vec3::new(1.5, 0.1, 0.1)).unwrap(),
-        Shape::tetrahedron(0.7).unwrap(),
-        Shape::capsule(0.3, 0.5).unwrap(),
-        Shape::ball(0.5).unwrap(),
+        Shape::cuboid(Vec3::splat(0.5 * s)).unwrap(),
+        Shape::cuboid(Vec3::new(1.5, 0.1, 0.1) * s).unwrap(),
+        Shape::tetrahedron(0.7 * s).unwrap(),
+        Shape::capsule(0.3 * s, 0.5 * s).unwrap(),
+        Shape::ball(0.5 * s).unwrap(),
         Shape::convex(&small).unwrap(),
         Shape::from_meshes(&[two, right], FitOptions::default()).unwrap(),
     ]
@@ -706,7 +711,10 @@ proptest! {
 
     /// Random sequences of adds (every shape, kind and filter), removals,
     /// kind changes, single moves and moves of all at once, on a world
-    /// small and dense enough that most bodies touch: after every update
+    /// small and dense enough that most bodies touch, scaled to sizes of
+    /// 1e-3, 1 and 1e3 and placed at the origin or 1e4 from it (where f32
+    /// steps, about 1e-3, are coarser than the shapes of size 1e-3): after
+    /// every update
     /// the events are exactly those of an all-pairs hull test against the
     /// pairs touching at the update before (resting pairs kept untested,
     /// removed bodies' pairs ended, reused slots told apart by their
@@ -715,8 +723,12 @@ proptest! {
     #[test]
     fn events_match_an_all_pairs_model_through_any_edits(
         ops in prop::collection::vec(any_op(), 1..40),
+        size in prop::sample::select(vec![1e-3f32, 1.0, 1e3]),
+        far in prop::sample::select(vec![0.0f32, 1e4]),
     ) {
-        let shapes = shapes();
+        // The whole world scaled by `size`, and moved `far` from the origin.
+        let shapes = shapes_of_size(size);
+        let place = |p: Pose| Pose::new(p.position * size + Vec3::splat(far), p.rotation);
         let mut world = World::new();
         let mut model = Model::default();
         for op in ops {
@@ -724,7 +736,7 @@ proptest! {
             match op {
                 Op::Add { shape, pose, kind, filter } => {
                     let (layers, mask) = FILTERS[filter];
-                    let desc = BodyDesc::new(shapes[shape % shapes.len()].clone(), pose);
+                    let desc = BodyDesc::new(shapes[shape % shapes.len()].clone(), place(pose));
                     let id = world.add_body(desc.with_kind(KINDS[kind]).with_filter(layers, mask));
                     model.live.push((id.unwrap(), (layers, mask)));
                 }
@@ -738,7 +750,7 @@ proptest! {
                     world.set_kind(pick(k, &model), KINDS[kind]).unwrap();
                 }
                 Op::Move(k, pose) if !model.live.is_empty() => {
-                    world.set_pose(pick(k, &model), pose).unwrap();
+                    world.set_pose(pick(k, &model), place(pose)).unwrap();
                 }
                 Op::Nudge(d) => {
                     let ids: Vec<BodyId> = model.live.iter().map(|&(id, _)| id).collect();
@@ -746,7 +758,7 @@ proptest! {
                         .iter()
                         .map(|&id| {
                             let p = world.pose(id).unwrap();
-                            Pose::new(p.position + d, p.rotation)
+                            Pose::new(p.position + d * size, p.rotation)
                         })
                         .collect();
                     world.set_poses(&ids, &poses).unwrap();
@@ -770,13 +782,16 @@ proptest! {
                     let set: BTreeSet<_> = got.iter().copied().collect();
                     prop_assert_eq!(set.len(), got.len(), "an event twice");
                     prop_assert_eq!(set, model.expected(&world));
+                    let (from, to) = (place(Pose::new(from, Quat::IDENTITY)), place(Pose::new(to, Quat::IDENTITY)));
+                    let (from, to) = (from.position, to.position);
                     if let Some(ray) = (to - from).try_normalize().map(|d| Ray::new(from, d)) {
                         let ids = model.live.iter().map(|&(id, _)| id);
-                        let want = nearest(&world, ids, &ray, 10.0).map(|(t, _)| t);
-                        let got = world.ray_cast(&ray, 10.0).map(|h| h.t);
+                        let want = nearest(&world, ids, &ray, 10.0 * size).map(|(t, _)| t);
+                        let got = world.ray_cast(&ray, 10.0 * size).map(|h| h.t);
                         prop_assert_eq!(got.is_some(), want.is_some(), "{:?} vs {:?}", got, want);
                         if let (Some(t), Some(want)) = (got, want) {
-                            prop_assert!((t - want).abs() <= 1e-4 * want.max(1.0), "{t} vs {want}");
+                            let tolerance = 1e-4 * want.max(size);
+                            prop_assert!((t - want).abs() <= tolerance, "{t} vs {want}");
                         }
                     }
                 }
