@@ -30,6 +30,8 @@ const BOX_BYTES: usize = 24;
 #[derive(Clone, Debug, PartialEq)]
 pub struct BoxTrace {
     n: usize,
+    /// Counted apart from the boxes: a trace of no boxes still has frames.
+    frames: usize,
     boxes: Vec<Aabb>,
 }
 
@@ -84,6 +86,13 @@ pub enum TraceError {
         /// The frame's.
         actual: usize,
     },
+    /// More boxes or frames than the format's 32-bit counts hold.
+    TooMany {
+        /// Boxes a frame.
+        boxes: usize,
+        /// Frames.
+        frames: usize,
+    },
 }
 
 impl fmt::Display for TraceError {
@@ -109,6 +118,9 @@ impl fmt::Display for TraceError {
             }
             TraceError::WrongCount { expected, actual } => {
                 write!(f, "a frame of {actual} boxes in a trace of {expected}")
+            }
+            TraceError::TooMany { boxes, frames } => {
+                write!(f, "{boxes} boxes over {frames} frames: the format counts each in 32 bits")
             }
         }
     }
@@ -136,7 +148,7 @@ fn check_box(b: &Aabb, frame: usize, index: usize) -> Result<(), TraceError> {
 impl BoxTrace {
     /// An empty trace of `n` boxes (no frames yet).
     pub fn new(n: usize) -> Self {
-        BoxTrace { n, boxes: Vec::new() }
+        BoxTrace { n, frames: 0, boxes: Vec::new() }
     }
 
     /// The number of boxes.
@@ -146,11 +158,17 @@ impl BoxTrace {
 
     /// The number of frames.
     pub fn frames(&self) -> usize {
-        self.boxes.len().checked_div(self.n).unwrap_or(0)
+        self.frames
     }
 
     /// The boxes of frame `f`.
+    ///
+    /// # Panics
+    ///
+    /// If `f` is not below [`frames`](BoxTrace::frames), as slice indexing
+    /// does.
     pub fn frame(&self, f: usize) -> &[Aabb] {
+        assert!(f < self.frames, "frame {f} of a trace of {} frames", self.frames);
         &self.boxes[f * self.n..(f + 1) * self.n]
     }
 
@@ -164,6 +182,7 @@ impl BoxTrace {
             check_box(b, frame, index)?;
         }
         self.boxes.extend_from_slice(boxes);
+        self.frames += 1;
         Ok(())
     }
 
@@ -190,17 +209,22 @@ impl BoxTrace {
             return Err(TraceError::UnknownVersion(word(4)));
         }
         let (n, frames) = (word(8) as u64, word(12) as u64);
-        let expected = HEADER as u64 + BOX_BYTES as u64 * n * frames;
+        // In 128 bits: 24 n frames can pass 2^64, and wrapped it could match a
+        // short file's length (then the boxes' vector, sized from the
+        // header, could not be allocated).
+        let expected = HEADER as u128 + BOX_BYTES as u128 * (n * frames) as u128;
         let actual = bytes.len() as u64;
-        if actual < expected {
+        if (actual as u128) < expected {
+            let expected = u64::try_from(expected).unwrap_or(u64::MAX);
             return Err(TraceError::Truncated { expected, actual });
         }
+        let expected = expected as u64;
         if actual > expected {
             return Err(TraceError::TrailingBytes { expected, actual });
         }
         let float = |i: usize| f32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
-        let mut trace =
-            BoxTrace { n: n as usize, boxes: Vec::with_capacity((n * frames) as usize) };
+        let boxes = Vec::with_capacity((n * frames) as usize);
+        let mut trace = BoxTrace { n: n as usize, frames: frames as usize, boxes };
         for k in 0..(n * frames) as usize {
             let at = HEADER + k * BOX_BYTES;
             let b = Aabb::new(
@@ -241,10 +265,15 @@ pub struct TraceWriter<W: Write> {
 }
 
 impl<W: Write> TraceWriter<W> {
-    /// Starts a trace of `n` boxes over `frames` frames.
+    /// Starts a trace of `n` boxes over `frames` frames. The format counts
+    /// each in 32 bits: more is [`TraceError::TooMany`], and nothing is
+    /// written.
     pub fn new(mut out: W, n: usize, frames: usize) -> Result<Self, TraceError> {
+        let (Ok(n32), Ok(frames32)) = (u32::try_from(n), u32::try_from(frames)) else {
+            return Err(TraceError::TooMany { boxes: n, frames });
+        };
         out.write_all(MAGIC)?;
-        for word in [VERSION, n as u32, frames as u32] {
+        for word in [VERSION, n32, frames32] {
             out.write_all(&word.to_le_bytes())?;
         }
         Ok(TraceWriter { out, n, frames, written: 0 })

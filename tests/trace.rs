@@ -3,7 +3,7 @@
 
 use bvol::scenes::{Scene, SceneKind};
 use bvol::volumes::Aabb;
-use bvol::{BoxTrace, PairDigest, TraceError};
+use bvol::{BoxTrace, PairDigest, TraceError, TraceWriter};
 use glam::Vec3;
 
 fn sample_trace(n: usize, frames: usize) -> BoxTrace {
@@ -64,6 +64,14 @@ fn malformed_files_say_what_is_wrong() {
     let e = with(&|b| b[at + 8..at + 12].copy_from_slice(&f32::NAN.to_le_bytes()));
     assert!(matches!(e, TraceError::NonFinite { frame: 1, index: 2 }));
     assert!(matches!(BoxTrace::read("/no/such/trace").unwrap_err(), TraceError::Io(_)));
+    // A header whose counts imply 2^64 * 3 bytes (24 * 2^31 * 2^30), which
+    // 64-bit arithmetic wraps to the header's 16: still truncated.
+    let e = with(&|b| {
+        b.truncate(16);
+        b[8..12].copy_from_slice(&(1u32 << 31).to_le_bytes());
+        b[12..16].copy_from_slice(&(1u32 << 30).to_le_bytes());
+    });
+    assert!(matches!(e, TraceError::Truncated { expected: u64::MAX, actual: 16 }), "{e}");
     // Building a trace checks the same things.
     let mut t = BoxTrace::new(1);
     assert!(matches!(t.push_frame(&[]), Err(TraceError::WrongCount { expected: 1, actual: 0 })));
@@ -73,6 +81,13 @@ fn malformed_files_say_what_is_wrong() {
         Err(TraceError::MinAboveMax { frame: 0, index: 0 })
     ));
     assert_eq!(t.frames(), 0);
+    // Counts the format cannot hold: an error, and nothing written.
+    let too_many = u32::MAX as usize + 1;
+    let mut out = Vec::new();
+    let e = TraceWriter::new(&mut out, too_many, 1).err().unwrap();
+    assert!(matches!(e, TraceError::TooMany { boxes, frames: 1 } if boxes == too_many), "{e}");
+    assert!(TraceWriter::new(&mut out, 1, too_many).is_err());
+    assert!(out.is_empty());
 }
 
 /// The brute-force pair set of a frame (closed boxes: touching counts).
@@ -137,4 +152,30 @@ fn digest_of_a_trace_is_the_sum_of_its_frames() {
         format!("{}", PairDigest { count: 3, h1: 0xab, h2: u64::MAX }),
         "3\t00000000000000ab\tffffffffffffffff"
     );
+}
+
+proptest::proptest! {
+    /// Any bytes after a valid magic and version, headers with any counts
+    /// among them: the reader gives a trace or an error, never a panic, and
+    /// a trace it gives writes back to the same bytes.
+    #[test]
+    fn any_bytes_read_to_a_trace_or_an_error(
+        counts in proptest::array::uniform2(proptest::prelude::any::<u32>()),
+        small in proptest::array::uniform2(0u32..4),
+        pick_small in proptest::prelude::any::<bool>(),
+        body in proptest::collection::vec(proptest::prelude::any::<u8>(), 0..300),
+    ) {
+        let [n, frames] = if pick_small { small } else { counts };
+        let mut bytes = b"BPHF\x01\0\0\0".to_vec();
+        bytes.extend_from_slice(&n.to_le_bytes());
+        bytes.extend_from_slice(&frames.to_le_bytes());
+        bytes.extend_from_slice(&body);
+        if pick_small {
+            // The length the header implies, so that some read through.
+            bytes.resize(16 + 24 * (n * frames) as usize, 0);
+        }
+        if let Ok(trace) = BoxTrace::from_bytes(&bytes) {
+            proptest::prop_assert_eq!(bytes_of(&trace), bytes);
+        }
+    }
 }
