@@ -6,6 +6,7 @@ use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use bvol_volumes::Pose;
+use glam::Vec3;
 
 use crate::Shape;
 
@@ -23,12 +24,18 @@ pub const MAX_COORDINATE: f32 = 1e18;
 /// would no longer hold the shape the narrow phase tests.
 pub const ROTATION_LENGTH_SQUARED: RangeInclusive<f32> = 1e-18..=1e18;
 
+/// Whether every coordinate of `v` is at most [`MAX_COORDINATE`] in
+/// magnitude (a NaN one is not): the one test of that limit, for poses,
+/// shapes' points and primitives' sizes.
+pub(crate) fn within_limit(v: Vec3) -> bool {
+    v.abs().cmple(Vec3::splat(MAX_COORDINATE)).all()
+}
+
 /// Whether a world can place a body at `pose`: its position finite and within
 /// [`MAX_COORDINATE`], its rotation's squared length within
 /// [`ROTATION_LENGTH_SQUARED`] (which no NaN or infinite one is).
 pub(crate) fn placeable(pose: &Pose) -> bool {
-    pose.position.abs().cmple(glam::Vec3::splat(MAX_COORDINATE)).all()
-        && ROTATION_LENGTH_SQUARED.contains(&pose.rotation.length_squared())
+    within_limit(pose.position) && ROTATION_LENGTH_SQUARED.contains(&pose.rotation.length_squared())
 }
 
 /// A body in a [`World`](crate::World): its slot and the slot's generation,

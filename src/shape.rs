@@ -9,7 +9,7 @@ use bvol_narrow::Polyhedron;
 use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
 use glam::{DVec3, Vec3};
 
-use crate::body::MAX_COORDINATE;
+use crate::body::{MAX_COORDINATE, within_limit};
 use crate::mesh::{Mesh, MeshError, load_obj};
 
 /// The fitting methods of a shape's bounds. The defaults are the tightest:
@@ -180,7 +180,7 @@ impl Shape {
 
     /// A box centred on the origin.
     pub fn cuboid(half_extents: Vec3) -> Result<Shape, ShapeError> {
-        if !(half_extents.cmpgt(Vec3::ZERO).all() && within(half_extents.max_element())) {
+        if !(half_extents.cmpgt(Vec3::ZERO).all() && within_limit(half_extents)) {
             return Err(ShapeError::BadSize { primitive: "cuboid" });
         }
         let polyhedron = Polyhedron::cuboid(half_extents)
@@ -194,7 +194,7 @@ impl Shape {
 
     /// A ball of `radius` centred on the origin, tested exactly.
     pub fn ball(radius: f32) -> Result<Shape, ShapeError> {
-        if !(radius > 0.0 && within(radius)) {
+        if !(radius > 0.0 && within_limit(Vec3::splat(radius))) {
             return Err(ShapeError::BadSize { primitive: "ball" });
         }
         Self::from_parts(vec![Part::Ball(Sphere::new(Vec3::ZERO, radius))], FitOptions::default())
@@ -203,7 +203,8 @@ impl Shape {
     /// A capsule along y (a segment of half length `half_height` swept by a
     /// ball of `radius`), as a convex hull of its two capped ends.
     pub fn capsule(radius: f32, half_height: f32) -> Result<Shape, ShapeError> {
-        if !(radius > 0.0 && half_height >= 0.0 && within(radius + half_height)) {
+        if !(radius > 0.0 && half_height >= 0.0 && within_limit(Vec3::splat(radius + half_height)))
+        {
             return Err(ShapeError::BadSize { primitive: "capsule" });
         }
         let points: Vec<Vec3> = fibonacci_sphere(CAP_POINTS)
@@ -215,7 +216,7 @@ impl Shape {
     /// A regular tetrahedron with its corners at distance `radius` from the
     /// origin.
     pub fn tetrahedron(radius: f32) -> Result<Shape, ShapeError> {
-        if !(radius > 0.0 && within(radius)) {
+        if !(radius > 0.0 && within_limit(Vec3::splat(radius))) {
             return Err(ShapeError::BadSize { primitive: "tetrahedron" });
         }
         let s = radius / 3f32.sqrt();
@@ -275,16 +276,10 @@ impl Shape {
     }
 }
 
-/// Whether a size or coordinate's magnitude is at most [`MAX_COORDINATE`]
-/// (NaN is not).
-fn within(x: f32) -> bool {
-    x.abs() <= MAX_COORDINATE
-}
-
 /// The convex part of a point set, named for errors.
 fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
     // NaN and infinite points are named by the polyhedron's own check.
-    let beyond = |p: &Vec3| p.is_finite() && p.abs().cmpgt(Vec3::splat(MAX_COORDINATE)).any();
+    let beyond = |p: &Vec3| p.is_finite() && !within_limit(*p);
     if let Some(point) = points.iter().position(beyond) {
         return Err(ShapeError::OutOfRange { part: name.to_owned(), point });
     }
