@@ -714,12 +714,11 @@ proptest! {
     /// small and dense enough that most bodies touch, scaled to sizes of
     /// 1e-3, 1 and 1e3 and placed at the origin or 1e4 from it (where f32
     /// steps, about 1e-3, are coarser than the shapes of size 1e-3): after
-    /// every update
-    /// the events are exactly those of an all-pairs hull test against the
-    /// pairs touching at the update before (resting pairs kept untested,
-    /// removed bodies' pairs ended, reused slots told apart by their
-    /// handles), in slot order, with a contact on each but the ended; and
-    /// a ray cast finds the nearest body that every shape tested finds.
+    /// every update the events are exactly those of an all-pairs hull test
+    /// against the pairs touching at the update before (resting pairs kept
+    /// untested, removed bodies' pairs ended, reused slots told apart by
+    /// their handles), in slot order, with a contact on each but the ended;
+    /// and a ray cast finds the nearest body that every shape tested finds.
     #[test]
     fn events_match_an_all_pairs_model_through_any_edits(
         ops in prop::collection::vec(any_op(), 1..40),
@@ -728,7 +727,8 @@ proptest! {
     ) {
         // The whole world scaled by `size`, and moved `far` from the origin.
         let shapes = shapes_of_size(size);
-        let place = |p: Pose| Pose::new(p.position * size + Vec3::splat(far), p.rotation);
+        let at = |p: Vec3| p * size + Vec3::splat(far);
+        let place = |p: Pose| Pose::new(at(p.position), p.rotation);
         let mut world = World::new();
         let mut model = Model::default();
         for op in ops {
@@ -782,8 +782,7 @@ proptest! {
                     let set: BTreeSet<_> = got.iter().copied().collect();
                     prop_assert_eq!(set.len(), got.len(), "an event twice");
                     prop_assert_eq!(set, model.expected(&world));
-                    let (from, to) = (place(Pose::new(from, Quat::IDENTITY)), place(Pose::new(to, Quat::IDENTITY)));
-                    let (from, to) = (from.position, to.position);
+                    let (from, to) = (at(from), at(to));
                     if let Some(ray) = (to - from).try_normalize().map(|d| Ray::new(from, d)) {
                         let ids = model.live.iter().map(|&(id, _)| id);
                         let want = nearest(&world, ids, &ray, 10.0 * size).map(|(t, _)| t);
