@@ -66,7 +66,7 @@ pub use bound::Bound;
 pub use error::{BoundError, Slot, TreeError, Violation};
 pub use pair_set::PairSet;
 pub use tree::{Move, Tree};
-pub use update::Frame;
+pub use update::UpdateStats;
 
 /// Tuning of a [`Tree`]. The defaults were measured on 100 000 moving boxes
 /// (`benches/frame.rs`).

@@ -11,9 +11,10 @@ use crate::staged::{Installed, STAGED_FRAMES, Staged, TRICKLE_PACE};
 use crate::tree::{NONE, ROOT, check_bound, check_id};
 use crate::{Bound, Tree, TreeError};
 
-/// What [`Tree::update`] did.
+/// What one update ([`Tree::update`], [`Tree::update_from`] or
+/// [`Tree::update_moved`]) did to the tree.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Frame {
+pub struct UpdateStats {
     /// Leaves whose bound changed.
     pub moved: usize,
     /// Ids that were new, and inserted.
@@ -26,7 +27,7 @@ pub struct Frame {
     /// Atoms (leaves or kept subtrees) placed by the upkeep's rebuilds.
     pub rebuilt: usize,
     /// Whether a rebuild staged over the last frames was installed: then
-    /// [`Frame::rebuilt`] counts every leaf, and no frame paid for the whole
+    /// [`UpdateStats::rebuilt`] counts every leaf, and no frame paid for the whole
     /// rebuild (see [`Tree::update`]).
     pub installed: bool,
 }
@@ -45,7 +46,7 @@ impl<B: Bound> Tree<B> {
     /// SAH cost has drifted (see [`Config::drift`](crate::Config)) it is
     /// rebuilt as by [`Tree::rebuild`], one phase a frame over the next six
     /// refits, and installed at the start of the seventh: no frame pays for
-    /// a whole rebuild ([`Frame::installed`] marks the frame that installs
+    /// a whole rebuild ([`UpdateStats::installed`] marks the frame that installs
     /// it). When more than one leaf in 16 jumps clear of its bound in one
     /// frame (bodies falling faster than their size), the jumps are refit
     /// where they land, like any move, and left to the staged rebuilds. A
@@ -56,14 +57,14 @@ impl<B: Bound> Tree<B> {
     /// leaf in 50 a frame) rebuilds the tree in one go.
     ///
     /// Every bound is checked first: on error nothing has changed.
-    pub fn update(&mut self, bounds: &[B]) -> Result<Frame, TreeError> {
+    pub fn update(&mut self, bounds: &[B]) -> Result<UpdateStats, TreeError> {
         if let Some(last) = bounds.len().checked_sub(1) {
             check_id(u32::try_from(last).unwrap_or(u32::MAX))?;
         }
         if let Some(id) = first_invalid(bounds) {
             check_bound(id as u32, &bounds[id])?;
         }
-        let mut frame = Frame::default();
+        let mut frame = UpdateStats::default();
         if self.is_empty() {
             // One batch build; the change log carries over (ids removed since
             // the last pair-set update must still end their pairs).
@@ -122,7 +123,7 @@ impl<B: Bound> Tree<B> {
     /// assert!(!tree.contains(1));
     /// # Ok::<(), bvol_tree::TreeError>(())
     /// ```
-    pub fn update_from(&mut self, bounds: &[B]) -> Result<Frame, TreeError> {
+    pub fn update_from(&mut self, bounds: &[B]) -> Result<UpdateStats, TreeError> {
         // The branch-free fold over every bound first, as in `update`; only
         // when it finds one not valid are the tree's ids told apart.
         if let Some(first) = first_invalid(bounds) {
@@ -131,7 +132,7 @@ impl<B: Bound> Tree<B> {
                 check_bound(id as u32, &bounds[id])?;
             }
         }
-        let mut frame = Frame::default();
+        let mut frame = UpdateStats::default();
         if !self.is_empty() {
             self.follow(bounds, &mut frame);
         }
@@ -142,7 +143,7 @@ impl<B: Bound> Tree<B> {
     /// The leaves already in the tree brought to `bounds[id]`: by one refit
     /// (which also advances, or installs, a staged rebuild), or by per-leaf
     /// moves of those that moved when few did.
-    fn follow(&mut self, bounds: &[B], frame: &mut Frame) {
+    fn follow(&mut self, bounds: &[B], frame: &mut UpdateStats) {
         let refit = self.staging() || self.upkeep.moved_fraction >= self.config.refit_fraction;
         if refit {
             self.refit_frame(bounds, frame);
@@ -170,7 +171,7 @@ impl<B: Bound> Tree<B> {
     /// the fraction moved, without reading the bounds of leaves that did not.
     ///
     /// Every id and bound is checked first: on error nothing has changed.
-    pub fn update_moved(&mut self, moved: &[(u32, B)]) -> Result<Frame, TreeError> {
+    pub fn update_moved(&mut self, moved: &[(u32, B)]) -> Result<UpdateStats, TreeError> {
         // Folded without branches, as in `update`; the loop names the first
         // bad one.
         let good = |&(id, bound): &(u32, B)| bound.is_valid() & self.contains(id);
@@ -182,7 +183,7 @@ impl<B: Bound> Tree<B> {
                 }
             }
         }
-        let mut frame = Frame { moved: moved.len(), ..Frame::default() };
+        let mut frame = UpdateStats { moved: moved.len(), ..UpdateStats::default() };
         if (moved.len() as f32) < self.config.refit_fraction * self.len as f32 {
             for &(id, bound) in moved {
                 if self.move_leaf(id, bound) == crate::Move::Reinserted {
@@ -220,7 +221,7 @@ impl<B: Bound> Tree<B> {
     }
 
     /// The refit path of a frame.
-    fn refit_frame(&mut self, bounds: &[B], frame: &mut Frame) {
+    fn refit_frame(&mut self, bounds: &[B], frame: &mut UpdateStats) {
         let installed = self.install_staged();
         let mut moved = std::mem::take(&mut self.upkeep.moved);
         let mut jumped = std::mem::take(&mut self.upkeep.jumped);
@@ -246,7 +247,7 @@ impl<B: Bound> Tree<B> {
         moved: impl ExactSizeIterator<Item = u32>,
         mut cost: f64,
         installed: Option<Installed>,
-        frame: &mut Frame,
+        frame: &mut UpdateStats,
     ) {
         frame.refit = true;
         let held = self.upkeep.hold_jumps();
@@ -300,7 +301,7 @@ impl<B: Bound> Tree<B> {
     /// their ancestors, each would be placed by bounds that are not there
     /// (a trickle of teleports, reinserted one by one at an install, left
     /// the tree at twice a fresh build's SAH cost).
-    fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], frame: &mut Frame) {
+    fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], frame: &mut UpdateStats) {
         // This frame's jumps, sorted, to tell the stale leaves among them:
         // only an install has stale leaves.
         let mut now: Vec<u32> = Vec::new();
@@ -342,7 +343,7 @@ impl<B: Bound> Tree<B> {
         stale: Option<Vec<u32>>,
         after_mass: bool,
         cost: f64,
-        frame: &mut Frame,
+        frame: &mut UpdateStats,
     ) {
         frame.rebuilt = self.len;
         frame.installed = true;
@@ -416,7 +417,7 @@ impl<B: Bound> Tree<B> {
 
     /// The per-leaf path of a frame: each moved leaf updated on its own, then
     /// the bounded upkeep.
-    fn move_each(&mut self, bounds: &[B], moved: &[u32], frame: &mut Frame) {
+    fn move_each(&mut self, bounds: &[B], moved: &[u32], frame: &mut UpdateStats) {
         for &id in moved {
             if self.move_leaf(id, bounds[id as usize]) == crate::Move::Reinserted {
                 frame.reinserted += 1;
