@@ -16,74 +16,9 @@
 
 use glam::DVec3;
 
-use crate::convex::Convex;
-use crate::frame::Frame;
+use crate::box_numbering::BoxNumbering;
+use crate::isometry::DIsometry3;
 use crate::sat::{EdgeQuery, FaceQuery, PARALLEL_SINE};
-
-/// A box's features by direction: what the closed-form queries need to name
-/// the face, vertex or edge they pick in the shape's own numbering.
-#[derive(Clone, Debug, PartialEq)]
-pub(crate) struct BoxNumbering {
-    /// The face whose outward normal is `+e_i` (`[i][0]`) or `-e_i` (`[i][1]`).
-    face: [[u32; 2]; 3],
-    /// The vertex at each corner, by corner code: bit `k` set when
-    /// coordinate `k` is positive.
-    vertex: [u32; 8],
-    /// The edge (index into the topology's edge list) between two corners, by
-    /// corner codes; `u32::MAX` for corners that share no edge.
-    edge: [[u32; 8]; 8],
-    /// The same edges' half-edges (those the edge list names).
-    half_edge: [[u32; 8]; 8],
-}
-
-impl BoxNumbering {
-    /// The half extents and numbering of `shape` if it is a box centred on
-    /// its origin with its faces square to the axes, exactly (its corners at
-    /// `±half` on every axis, its face normals the axes): `None` otherwise.
-    pub fn of(shape: &impl Convex) -> Option<(DVec3, BoxNumbering)> {
-        let topology = shape.topology();
-        if topology.vertex_count() != 8 || topology.face_count() != 6 {
-            return None;
-        }
-        let half = shape.vertex(0).abs();
-        let mut numbering = BoxNumbering {
-            face: [[u32::MAX; 2]; 3],
-            vertex: [u32::MAX; 8],
-            edge: [[u32::MAX; 8]; 8],
-            half_edge: [[u32::MAX; 8]; 8],
-        };
-        for f in 0..6 {
-            let n = shape.plane(f).normal;
-            let i = n.abs().max_position();
-            if n.abs() != DVec3::AXES[i] {
-                return None;
-            }
-            numbering.face[i][usize::from(n[i] < 0.0)] = f;
-        }
-        for v in 0..8 {
-            let p = shape.vertex(v);
-            if p.abs() != half {
-                return None;
-            }
-            numbering.vertex[Self::highest(p)] = v;
-        }
-        for (e, &h) in (0u32..).zip(&topology.edges) {
-            let (a, b) = (topology.half_edge(h).origin, topology.head(h));
-            let (ca, cb) = (Self::highest(shape.vertex(a)), Self::highest(shape.vertex(b)));
-            (numbering.edge[ca][cb], numbering.edge[cb][ca]) = (e, e);
-            (numbering.half_edge[ca][cb], numbering.half_edge[cb][ca]) = (h, h);
-        }
-        let complete = numbering.face.iter().flatten().all(|&f| f != u32::MAX)
-            && numbering.vertex.iter().all(|&v| v != u32::MAX)
-            && (0..8).all(|c| (0..3).all(|k| numbering.edge[c][c ^ (1 << k)] != u32::MAX));
-        complete.then_some((half, numbering))
-    }
-
-    /// The corner highest along `dir` (on a tie, the positive side).
-    fn highest(dir: DVec3) -> usize {
-        usize::from(dir.x >= 0.0) | usize::from(dir.y >= 0.0) << 1 | usize::from(dir.z >= 0.0) << 2
-    }
-}
 
 /// What the closed-form queries found: the face of A and of B with the
 /// greatest separation, and the edge pair with the greatest (`None` if every
@@ -111,7 +46,7 @@ pub(crate) struct BoxQueries {
 pub(crate) fn box_queries(
     (ha, a): (DVec3, &BoxNumbering),
     (hb, b): (DVec3, &BoxNumbering),
-    rel: &Frame,
+    rel: &DIsometry3,
 ) -> BoxQueries {
     let (r, t) = (rel.rotation, rel.translation);
     let rows = r.transpose(); // rows[i] = row i of R: B's axes' i-th components
@@ -208,11 +143,12 @@ mod tests {
 
     use super::*;
     use crate::Polyhedron;
+    use crate::convex::Convex;
     use crate::sat::tests::next;
 
     /// The greatest of `min over B - max over A` along `axis`, from every
     /// vertex of both (B's mapped by `rel`).
-    fn vertex_gap(a: &Polyhedron, b: &Polyhedron, rel: &Frame, axis: DVec3) -> f64 {
+    fn vertex_gap(a: &Polyhedron, b: &Polyhedron, rel: &DIsometry3, axis: DVec3) -> f64 {
         let high_a = a.points.iter().map(|&v| axis.dot(v)).fold(f64::NEG_INFINITY, f64::max);
         let low_b = b.points.iter().map(|&v| axis.dot(rel.apply(v))).fold(f64::INFINITY, f64::min);
         low_b - high_a
@@ -220,7 +156,7 @@ mod tests {
 
     /// The greatest separation over the faces of `reference`, from every
     /// vertex of `other` (mapped by `rel`).
-    fn brute_faces(reference: &Polyhedron, other: &Polyhedron, rel: &Frame) -> f64 {
+    fn brute_faces(reference: &Polyhedron, other: &Polyhedron, rel: &DIsometry3) -> f64 {
         (0..6)
             .map(|f| {
                 let plane = reference.plane(f);
@@ -235,7 +171,7 @@ mod tests {
 
     /// The greatest gap over both directions of every edge pair's cross
     /// product (skipping pairs closer to parallel than the queries do).
-    fn brute_edges(a: &Polyhedron, b: &Polyhedron, rel: &Frame) -> Option<f64> {
+    fn brute_edges(a: &Polyhedron, b: &Polyhedron, rel: &DIsometry3) -> Option<f64> {
         let direction = |p: &Polyhedron, h: u32| {
             p.vertex(p.topology.head(h)) - p.vertex(p.topology.half_edge(h).origin)
         };
@@ -281,11 +217,11 @@ mod tests {
             } else {
                 rotation
             };
-            let rel = Frame {
+            let rel = DIsometry3 {
                 rotation: DMat3::from_quat(rotation),
                 translation: DVec3::new(q(), q(), q()) * 6.0,
             };
-            let inv = rel.relative(&Frame::IDENTITY);
+            let inv = rel.relative(&DIsometry3::IDENTITY);
             let got = box_queries(a.as_box().unwrap(), b.as_box().unwrap(), &rel);
             let tolerance = 1e-12 * (a.size + b.size);
             let close = |x: f64, y: f64| (x - y).abs() <= tolerance;

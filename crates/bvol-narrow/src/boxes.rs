@@ -2,9 +2,9 @@
 
 use bvol_volumes::Obb;
 
-use crate::convex::Cuboid;
-use crate::frame::Frame;
+use crate::cuboid::Cuboid;
 use crate::hull::collide;
+use crate::isometry::DIsometry3;
 use crate::{Body, Collision, NarrowError, Pose, WarmStart};
 
 /// Whether two oriented boxes touch, and how: the test and contact of
@@ -38,15 +38,15 @@ use crate::{Body, Collision, NarrowError, Pose, WarmStart};
 /// # Ok::<(), bvol_narrow::NarrowError>(())
 /// ```
 pub fn obb_obb(a: &Obb, pose_a: &Pose, b: &Obb, pose_b: &Pose) -> Result<Collision, NarrowError> {
-    let frame_a = Frame::of_pose(pose_a, Body::A)?;
+    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
     check_obb(a, Body::A)?;
-    let frame_b = Frame::of_pose(pose_b, Body::B)?;
+    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?;
     check_obb(b, Body::B)?;
     Ok(collide(
         &Cuboid::new(a.half_extents),
-        &frame_a.with_box(a.center, a.axes),
+        &iso_a.with_box(a.center, a.axes),
         &Cuboid::new(b.half_extents),
-        &frame_b.with_box(b.center, b.axes),
+        &iso_b.with_box(b.center, b.axes),
         &mut WarmStart::default(),
     )
     .collision())

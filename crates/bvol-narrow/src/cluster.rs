@@ -5,7 +5,7 @@ use std::ops::Range;
 
 use glam::DVec3;
 
-use crate::convex::seed_slot;
+use crate::grid::seed_slot;
 
 /// A cap of the unit sphere: the directions within an angle of an axis.
 #[derive(Clone, Copy, Debug, PartialEq)]

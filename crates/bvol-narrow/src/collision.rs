@@ -2,11 +2,8 @@
 
 use glam::{DVec3, Vec3};
 
-use crate::frame::Frame;
-use crate::manifold::Manifold;
-
-/// The most points a [`Contact`] holds: enough to hold a face resting on a face.
-pub(crate) const MAX_POINTS: usize = 4;
+use crate::isometry::DIsometry3;
+use crate::manifold::{MAX_POINTS, Manifold};
 
 /// One point of a contact manifold.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -69,16 +66,16 @@ impl Collision {
     }
 
     /// Touching along `normal` (unit, world space, from A to B) by `depth`, with
-    /// the manifold's points mapped to the world by `frame`.
+    /// the manifold's points mapped to the world by `to_world`.
     pub(crate) fn touching(
         normal: DVec3,
         depth: f64,
         manifold: &Manifold,
-        frame: &Frame,
+        to_world: &DIsometry3,
     ) -> Collision {
         let mut points = [ContactPoint::default(); MAX_POINTS];
         for (out, &(p, d)) in points.iter_mut().zip(&manifold.points[..manifold.count]) {
-            *out = ContactPoint { position: frame.apply(p).as_vec3(), depth: d as f32 };
+            *out = ContactPoint { position: to_world.apply(p).as_vec3(), depth: d as f32 };
         }
         let contact =
             Contact::new(normal.as_vec3(), depth.max(0.0) as f32, &points[..manifold.count]);

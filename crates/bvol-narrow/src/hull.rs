@@ -5,7 +5,7 @@ use glam::DVec3;
 
 use crate::box_sat::box_queries;
 use crate::convex::Convex;
-use crate::frame::Frame;
+use crate::isometry::DIsometry3;
 use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
 use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, centre_line, edge_query, face_query};
 use crate::warm::{Apart, Feature, WarmStart, answers, margin, retest};
@@ -83,13 +83,13 @@ pub fn hull_hull(
     pose_b: &Pose,
     warm: &mut WarmStart,
 ) -> Result<Collision, NarrowError> {
-    Frame::check(pose_a, Body::A)?;
-    Frame::check(pose_b, Body::B)?;
+    DIsometry3::check(pose_a, Body::A)?;
+    DIsometry3::check(pose_b, Body::B)?;
     if let Some(gap) = warm.apart.gap_above((a, pose_a), (b, pose_b), margin(a, b)) {
         return Ok(Collision::separated(warm.apart.axis.as_dvec3(), gap));
     }
-    let (frame_a, frame_b) = (Frame::of_checked(pose_a), Frame::of_checked(pose_b));
-    let answer = collide(a, &frame_a, b, &frame_b, warm);
+    let (iso_a, iso_b) = (DIsometry3::of_checked(pose_a), DIsometry3::of_checked(pose_b));
+    let answer = collide(a, &iso_a, b, &iso_b, warm);
     warm.apart = match answer {
         Answer::Apart { axis, gap } => Apart::measured(axis, gap, (a, pose_a), (b, pose_b)),
         Answer::Touching(_) => Apart::NONE,
@@ -121,17 +121,17 @@ impl Answer {
     }
 }
 
-/// [`hull_hull`] for any two convex shapes placed by f64 frames.
+/// [`hull_hull`] for any two convex shapes placed by f64 isometries.
 pub(crate) fn collide<A: Convex, B: Convex>(
     a: &A,
-    frame_a: &Frame,
+    iso_a: &DIsometry3,
     b: &B,
-    frame_b: &Frame,
+    iso_b: &DIsometry3,
     warm: &mut WarmStart,
 ) -> Answer {
     // B's space into A's.
-    let rel = frame_a.relative(frame_b);
-    let (feature, answer) = query(a, frame_a, b, frame_b, &rel, warm.feature);
+    let rel = iso_a.relative(iso_b);
+    let (feature, answer) = query(a, iso_a, b, iso_b, &rel, warm.feature);
     warm.feature = feature;
     answer
 }
@@ -140,10 +140,10 @@ pub(crate) fn collide<A: Convex, B: Convex>(
 /// cached one again when its axis answers alone) and the answer.
 fn query<A: Convex, B: Convex>(
     a: &A,
-    frame_a: &Frame,
+    iso_a: &DIsometry3,
     b: &B,
-    frame_b: &Frame,
-    rel: &Frame,
+    iso_b: &DIsometry3,
+    rel: &DIsometry3,
     cached: Feature,
 ) -> (Feature, Answer) {
     let slack = PREFER_ABS * a.size().max(b.size());
@@ -153,7 +153,7 @@ fn query<A: Convex, B: Convex>(
     // time).
     if let (Some(box_a), Some(box_b)) = (a.as_box(), b.as_box()) {
         let q = box_queries(box_a, box_b, rel);
-        let pair = Pair { a, frame_a, b, frame_b, rel, inv: &frame_b.relative(frame_a) };
+        let pair = Pair { a, iso_a, b, iso_b, rel, inv: &iso_b.relative(iso_a) };
         // Apart: along the axis that separates them most.
         let choices = [Choice::FaceA(q.face_a), Choice::FaceB(q.face_b)];
         let apart = choices
@@ -166,11 +166,11 @@ fn query<A: Convex, B: Convex>(
             None => pair.decide(q.face_a, q.face_b, q.edge, slack),
         };
     }
-    let retested = retest(cached, a, frame_a, b, frame_b, rel);
+    let retested = retest(cached, a, iso_a, b, iso_b, rel);
     if let Some(c) = retested.filter(|c| answers(a, b, c.gap)) {
-        return (cached, Answer::Apart { axis: frame_a.rotate(c.axis), gap: c.gap });
+        return (cached, Answer::Apart { axis: iso_a.rotate(c.axis), gap: c.gap });
     }
-    full_query(a, frame_a, b, frame_b, rel, retested, slack)
+    full_query(a, iso_a, b, iso_b, rel, retested, slack)
 }
 
 /// The full test of two shapes that are not both boxes: the deciding
@@ -179,10 +179,10 @@ fn query<A: Convex, B: Convex>(
 /// contact, that let the queries skip more, never changing the answer.
 fn full_query<A: Convex, B: Convex>(
     a: &A,
-    frame_a: &Frame,
+    iso_a: &DIsometry3,
     b: &B,
-    frame_b: &Frame,
-    rel: &Frame,
+    iso_b: &DIsometry3,
+    rel: &DIsometry3,
     cached: Option<AxisGap>,
     slack: f64,
 ) -> (Feature, Answer) {
@@ -199,10 +199,10 @@ fn full_query<A: Convex, B: Convex>(
     if let Some(c) = centres.filter(|c| c.gap > 0.0) {
         let (support_a, support_b) = c.supports;
         let feature = Feature::Centres { support_a, support_b };
-        return (feature, Answer::Apart { axis: frame_a.rotate(c.axis), gap: c.gap });
+        return (feature, Answer::Apart { axis: iso_a.rotate(c.axis), gap: c.gap });
     }
-    let inv = &frame_b.relative(frame_a);
-    let pair = Pair { a, frame_a, b, frame_b, rel, inv };
+    let inv = &iso_b.relative(iso_a);
+    let pair = Pair { a, iso_a, b, iso_b, rel, inv };
     // Touching or close. The greatest separation over the candidate axes is
     // at least the gap along any axis, the centre line's and the cached
     // one's included; the preferences pick a feature at most their slack
@@ -267,13 +267,13 @@ impl Choice {
 /// Two shapes placed in the world and seen from each other.
 struct Pair<'a, A, B> {
     a: &'a A,
-    frame_a: &'a Frame,
+    iso_a: &'a DIsometry3,
     b: &'a B,
-    frame_b: &'a Frame,
+    iso_b: &'a DIsometry3,
     /// B's space into A's.
-    rel: &'a Frame,
+    rel: &'a DIsometry3,
     /// A's space into B's.
-    inv: &'a Frame,
+    inv: &'a DIsometry3,
 }
 
 impl<A: Convex, B: Convex> Pair<'_, A, B> {
@@ -318,10 +318,10 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
     /// The choice's unit axis in the world, from A to B, and its separation.
     fn axis(&self, choice: Choice) -> (DVec3, f64) {
         match choice {
-            Choice::FaceA(q) => (self.frame_a.rotate(self.a.plane(q.face).normal), q.separation),
+            Choice::FaceA(q) => (self.iso_a.rotate(self.a.plane(q.face).normal), q.separation),
             // B's outward normal points from B to A.
-            Choice::FaceB(q) => (-self.frame_b.rotate(self.b.plane(q.face).normal), q.separation),
-            Choice::Edges(e) => (self.frame_a.rotate(e.axis), e.separation),
+            Choice::FaceB(q) => (-self.iso_b.rotate(self.b.plane(q.face).normal), q.separation),
+            Choice::Edges(e) => (self.iso_a.rotate(e.axis), e.separation),
         }
     }
 
@@ -334,30 +334,30 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
     /// Touching along the choice's axis, with its manifold; `None` if a face's
     /// clipped incident face has no point at or below the reference plane.
     fn touching(&self, choice: Choice) -> Option<(Feature, Answer)> {
-        let (manifold, frame) = self.manifold(choice, false);
-        (manifold.count > 0).then(|| self.answer(choice, &manifold, frame))
+        let (manifold, to_world) = self.manifold(choice, false);
+        (manifold.count > 0).then(|| self.answer(choice, &manifold, to_world))
     }
 
     /// Touching along a face's axis at the other shape's lowest vertex: for
     /// when rounding leaves the clipped face of even the least penetration
     /// just above its reference plane.
     fn touching_at_support(&self, choice: Choice) -> (Feature, Answer) {
-        let (manifold, frame) = self.manifold(choice, true);
-        self.answer(choice, &manifold, frame)
+        let (manifold, to_world) = self.manifold(choice, true);
+        self.answer(choice, &manifold, to_world)
     }
 
-    /// The choice's manifold, in the space that the returned frame maps to
+    /// The choice's manifold, in the space that the returned isometry maps to
     /// the world: for a face, the clipped incident face, or (`at_support`) the
     /// other shape's lowest vertex alone; for an edge pair, its one point.
-    fn manifold(&self, choice: Choice, at_support: bool) -> (Manifold, &Frame) {
+    fn manifold(&self, choice: Choice, at_support: bool) -> (Manifold, &DIsometry3) {
         match choice {
             Choice::FaceA(q) => {
-                (face_manifold(self.a, q, self.b, self.rel, at_support), self.frame_a)
+                (face_manifold(self.a, q, self.b, self.rel, at_support), self.iso_a)
             }
             Choice::FaceB(q) => {
-                (face_manifold(self.b, q, self.a, self.inv, at_support), self.frame_b)
+                (face_manifold(self.b, q, self.a, self.inv, at_support), self.iso_b)
             }
-            Choice::Edges(e) => (self.edge_manifold(e), self.frame_a),
+            Choice::Edges(e) => (self.edge_manifold(e), self.iso_a),
         }
     }
 
@@ -376,10 +376,15 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         )
     }
 
-    /// The touching answer for a choice and its manifold (in the space `frame` maps).
-    fn answer(&self, choice: Choice, manifold: &Manifold, frame: &Frame) -> (Feature, Answer) {
+    /// The touching answer for a choice and its manifold (in the space `to_world` maps).
+    fn answer(
+        &self,
+        choice: Choice,
+        manifold: &Manifold,
+        to_world: &DIsometry3,
+    ) -> (Feature, Answer) {
         let (normal, separation) = self.axis(choice);
-        let contact = Collision::touching(normal, -separation, manifold, frame);
+        let contact = Collision::touching(normal, -separation, manifold, to_world);
         (self.feature(choice), Answer::Touching(contact))
     }
 }
@@ -391,7 +396,7 @@ fn face_manifold<R: Convex, I: Convex>(
     reference: &R,
     q: FaceQuery,
     incident: &I,
-    rel: &Frame,
+    rel: &DIsometry3,
     at_support: bool,
 ) -> Manifold {
     if at_support {

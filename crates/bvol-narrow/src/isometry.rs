@@ -1,4 +1,4 @@
-//! Rigid frames in f64: where a shape's local space sits, and one shape's space
+//! Rigid maps in f64: where a shape's local space sits, and one shape's space
 //! seen from another's.
 
 use bvol_volumes::Pose;
@@ -6,25 +6,29 @@ use glam::{DMat3, DVec3, Mat3, Vec3};
 
 use crate::{Body, NarrowError};
 
-/// A rigid map `x -> rotation * x + translation`, with an orthonormal f64 rotation.
+/// A rigid map `x -> rotation * x + translation`, with an orthonormal f64
+/// rotation: an isometry, as nalgebra and parry name it, in f64 and 3-D as
+/// glam's `DMat3` and `DAffine3` are (a `DAffine3` whose matrix is a rotation,
+/// inverted by its transpose).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Frame {
+pub(crate) struct DIsometry3 {
     /// Orthonormal rotation.
     pub rotation: DMat3,
     /// Translation, applied after the rotation.
     pub translation: DVec3,
 }
 
-impl Frame {
+impl DIsometry3 {
     /// The map that leaves every point where it is.
-    pub const IDENTITY: Frame = Frame { rotation: DMat3::IDENTITY, translation: DVec3::ZERO };
+    pub const IDENTITY: DIsometry3 =
+        DIsometry3 { rotation: DMat3::IDENTITY, translation: DVec3::ZERO };
 
-    /// The frame of a pose: its rotation in f64 ([`Pose::rotation_f64`]),
+    /// The isometry of a pose: its rotation in f64 ([`Pose::rotation_f64`]),
     /// orthonormal to f64 rounding whatever f32 rounding did to the
     /// quaternion.
-    pub fn of_pose(pose: &Pose, body: Body) -> Result<Frame, NarrowError> {
-        Frame::check(pose, body)?;
-        Ok(Frame::of_checked(pose))
+    pub fn of_pose(pose: &Pose, body: Body) -> Result<DIsometry3, NarrowError> {
+        DIsometry3::check(pose, body)?;
+        Ok(DIsometry3::of_checked(pose))
     }
 
     /// [`NarrowError::NonFinitePose`] for a pose with a NaN or infinite
@@ -33,20 +37,20 @@ impl Frame {
         if pose.is_finite() { Ok(()) } else { Err(NarrowError::NonFinitePose { body }) }
     }
 
-    /// The frame of a pose that passed [`Frame::check`].
-    pub fn of_checked(pose: &Pose) -> Frame {
-        Frame { rotation: pose.rotation_f64(), translation: pose.position.as_dvec3() }
+    /// The isometry of a pose that passed [`DIsometry3::check`].
+    pub fn of_checked(pose: &Pose) -> DIsometry3 {
+        DIsometry3 { rotation: pose.rotation_f64(), translation: pose.position.as_dvec3() }
     }
 
-    /// This frame followed by a box's own placement inside it: `center` and the
+    /// This isometry followed by a box's own placement inside it: `center` and the
     /// columns of `axes`, made orthonormal by Gram-Schmidt (the first axis kept).
     /// A box is symmetric, so a left-handed `axes` places the same box.
-    pub fn with_box(&self, center: Vec3, axes: Mat3) -> Frame {
+    pub fn with_box(&self, center: Vec3, axes: Mat3) -> DIsometry3 {
         let x = axes.x_axis.as_dvec3().try_normalize().unwrap_or(DVec3::X);
         let y = axes.y_axis.as_dvec3();
         let y = (y - x * x.dot(y)).try_normalize().unwrap_or_else(|| x.any_orthonormal_vector());
         let local = DMat3::from_cols(x, y, x.cross(y));
-        Frame { rotation: self.rotation * local, translation: self.apply(center.as_dvec3()) }
+        DIsometry3 { rotation: self.rotation * local, translation: self.apply(center.as_dvec3()) }
     }
 
     /// Maps a point.
@@ -64,10 +68,10 @@ impl Frame {
         self.rotation.transpose() * v
     }
 
-    /// The map from `other`'s local space to this frame's: `self^-1 * other`.
-    pub fn relative(&self, other: &Frame) -> Frame {
+    /// The map from `other`'s local space to this isometry's: `self^-1 * other`.
+    pub fn relative(&self, other: &DIsometry3) -> DIsometry3 {
         let r = self.rotation.transpose();
-        Frame {
+        DIsometry3 {
             rotation: r * other.rotation,
             translation: r * (other.translation - self.translation),
         }

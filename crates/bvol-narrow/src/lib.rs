@@ -49,16 +49,21 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod arc;
+mod box_numbering;
 mod box_sat;
 mod boxes;
 mod cluster;
 mod collision;
 mod convex;
+mod cuboid;
 mod error;
-mod frame;
+mod grid;
 mod hull;
+mod isometry;
 mod lanes;
 mod manifold;
+mod plane;
 mod polyhedron;
 mod sat;
 mod sphere;

@@ -7,15 +7,19 @@ use std::cell::RefCell;
 
 use glam::DVec3;
 
-use crate::collision::MAX_POINTS;
-use crate::convex::{Convex, Plane};
-use crate::frame::Frame;
+use crate::convex::Convex;
+use crate::isometry::DIsometry3;
+use crate::plane::Plane;
 
 /// Incident points above the reference plane by less than this, relative to
 /// the shapes' size, still count as touching: f64 rounding of exactly
 /// resting faces puts some corners a hair above, and a manifold that lost
 /// corners to that would flicker.
 const TOUCH_SLOP: f64 = 1e-9;
+
+/// The most points a manifold, and so a [`Contact`](crate::Contact), holds:
+/// enough to hold a face resting on a face.
+pub(crate) const MAX_POINTS: usize = 4;
 
 thread_local! {
     /// Two polygons' worth of corners per thread, reused by every face
@@ -60,7 +64,7 @@ pub(crate) fn face_contact<R: Convex, I: Convex>(
     reference: &R,
     face: u32,
     incident: &I,
-    rel: &Frame,
+    rel: &DIsometry3,
     support: u32,
 ) -> Manifold {
     let plane = reference.plane(face);
@@ -92,7 +96,7 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
     reference: &R,
     face: u32,
     incident: &I,
-    rel: &Frame,
+    rel: &DIsometry3,
     support: u32,
 ) -> Manifold {
     let plane = reference.plane(face);
@@ -129,7 +133,7 @@ pub(crate) fn rim<S: Convex>(shape: &S, face: u32) -> impl Iterator<Item = (DVec
 
 /// The face round vertex `v` of `shape` whose normal, mapped by `rel`, is most
 /// anti-parallel to `normal` (first on ties).
-fn incident_face<I: Convex>(shape: &I, rel: &Frame, normal: DVec3, v: u32) -> u32 {
+fn incident_face<I: Convex>(shape: &I, rel: &DIsometry3, normal: DVec3, v: u32) -> u32 {
     let dir = rel.unrotate(normal);
     let topology = shape.topology();
     let mut best = (u32::MAX, f64::INFINITY);

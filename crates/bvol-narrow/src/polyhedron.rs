@@ -1,15 +1,20 @@
 //! Convex polyhedra with what the separating-axis test reads precomputed.
 
+use std::ops::Range;
+use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU32, Ordering};
 
 use bvol_volumes::{ConvexHull, FitError};
 use glam::{DVec3, Vec3};
 
 use crate::ShapeError;
-use crate::box_sat::BoxNumbering;
+use crate::arc::Arc;
+use crate::box_numbering::BoxNumbering;
 use crate::cluster::{Cap, Cluster, group};
-use crate::convex::{Arc, Cuboid, Plane, SEEDS, seed_direction, unit_cube};
-use crate::lanes::CapLanes;
+use crate::convex::Convex;
+use crate::grid::{SEEDS, seed_direction, seed_slot};
+use crate::lanes::{CapLanes, Witness, lanes_left};
+use crate::plane::Plane;
 use crate::topology::Topology;
 
 /// A convex polyhedron in its local space, with what the separating-axis test
@@ -62,7 +67,7 @@ pub struct Polyhedron {
     /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
     pub(crate) edge_clusters: Vec<Cluster>,
     /// The lowest vertex along each of the grid directions of
-    /// [`seed_slot`](crate::convex::seed_slot).
+    /// [`seed_slot`].
     pub(crate) seeds: [u32; SEEDS],
     /// The face most along each of those directions.
     pub(crate) face_seeds: [u32; SEEDS],
@@ -118,11 +123,11 @@ impl Polyhedron {
         if !(half_extents.is_finite() && half_extents.cmpgt(Vec3::ZERO).all()) {
             return Err(ShapeError::BadHalfExtents);
         }
-        let unit = unit_cube();
+        let unit = Polyhedron::unit_cube();
         let half = half_extents.as_dvec3();
         Ok(Polyhedron::assemble(
             unit.vertices.iter().map(|&v| v * half_extents).collect(),
-            unit.planes.iter().map(|&p| Cuboid::scaled_plane(p, half)).collect(),
+            unit.planes.iter().map(|&p| p.scaled_to_box(half)).collect(),
             unit.topology.clone(),
         ))
     }
@@ -175,7 +180,8 @@ impl Polyhedron {
             let along = (0u32..).zip(&planes).map(|(f, p)| (f, -dir.dot(p.normal)));
             along.fold((0, f64::INFINITY), first_min).0
         });
-        let mut polyhedron = Polyhedron {
+        let box_shape = BoxNumbering::of(&points, &planes, &topology);
+        Polyhedron {
             vertices,
             points,
             planes,
@@ -192,10 +198,8 @@ impl Polyhedron {
             edge_clusters,
             seeds,
             face_seeds,
-            box_shape: None,
-        };
-        polyhedron.box_shape = BoxNumbering::of(&polyhedron);
-        polyhedron
+            box_shape,
+        }
     }
 
     /// The vertices, in local space.
@@ -212,4 +216,128 @@ impl Polyhedron {
     pub fn edge_count(&self) -> usize {
         self.topology.edges.len()
     }
+    /// The cube `[-1, 1]^3`, built once.
+    pub(crate) fn unit_cube() -> &'static Polyhedron {
+        static CUBE: OnceLock<Polyhedron> = OnceLock::new();
+        CUBE.get_or_init(|| {
+            let corners: Vec<Vec3> = (0..8)
+                .map(|i| {
+                    let s = |bit: u32| if i & bit == 0 { -1.0 } else { 1.0 };
+                    Vec3::new(s(1), s(2), s(4))
+                })
+                .collect();
+            Polyhedron::from_points(&corners).expect("eight cube corners span a solid")
+        })
+    }
 }
+
+impl Convex for Polyhedron {
+    fn topology(&self) -> &Topology {
+        &self.topology
+    }
+
+    fn vertex(&self, v: u32) -> DVec3 {
+        self.points[v as usize]
+    }
+
+    fn plane(&self, f: u32) -> Plane {
+        self.planes[f as usize]
+    }
+
+    fn size(&self) -> f64 {
+        self.size
+    }
+
+    fn inner_ball(&self) -> (DVec3, f64) {
+        self.inner_ball
+    }
+
+    fn seed(&self, dir: DVec3) -> u32 {
+        self.seeds[seed_slot(dir)]
+    }
+
+    fn face_seed(&self, dir: DVec3) -> u32 {
+        self.face_seeds[seed_slot(dir)]
+    }
+
+    fn support_min(&self, dir: DVec3, start: u32, limit: f64) -> (u32, f64) {
+        if self.points.len() > SCAN_ALL {
+            return hill_climb(self, dir, start, limit);
+        }
+        let along = (0u32..).zip(&self.points).map(|(i, &v)| (i, dir.dot(v)));
+        along.fold((0, f64::INFINITY), |m, x| if x.1 < m.1 { x } else { m })
+    }
+
+    fn as_box(&self) -> Option<(DVec3, &BoxNumbering)> {
+        self.box_shape.as_ref().map(|(half, numbering)| (*half, numbering))
+    }
+
+    fn arc(&self, e: u32) -> Arc {
+        self.arcs[e as usize]
+    }
+
+    fn arc_cap(&self, e: u32) -> (Cap, f64) {
+        self.arc_caps[e as usize]
+    }
+
+    fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
+        self.face_clusters.iter().cloned()
+    }
+
+    /// On f32 lanes, four faces at a time.
+    fn faces_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        lanes_left(&self.face_lanes, run, witnesses, 2.0 * self.size, bar)
+    }
+
+    /// On f32 lanes, four arcs at a time.
+    fn arcs_left<const N: usize>(
+        &self,
+        run: Range<u32>,
+        witnesses: &[Witness; N],
+        bar: f64,
+    ) -> u64 {
+        lanes_left(&self.arc_lanes, run, witnesses, 2.0 * self.size, bar)
+    }
+
+    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
+        self.edge_clusters.iter().cloned()
+    }
+}
+
+/// [`Convex::support_min`] by hill climbing on the vertex graph, to the
+/// steepest neighbour while one is strictly lower, from `start`: the
+/// previous face's, arc's or last call's answer (often a step away), or the
+/// [`seed`](Convex::seed) for `dir` where there is none (never far). On a
+/// convex polyhedron a vertex no neighbour improves on is a global minimum
+/// (up to the hull's coplanarity tolerance), whatever the start, so the start
+/// is not compared with the seed: it is near already. Stops early at or below `limit`: a query that only needs to know whether
+/// the least beats a bar climbs no further.
+fn hill_climb<S: Convex + ?Sized>(shape: &S, dir: DVec3, start: u32, limit: f64) -> (u32, f64) {
+    let topology = shape.topology();
+    let (mut v, mut low) = (start, dir.dot(shape.vertex(start)));
+    loop {
+        if low <= limit {
+            return (v, low);
+        }
+        let mut next = v;
+        for &w in topology.neighbours(v) {
+            let d = dir.dot(shape.vertex(w));
+            if d < low {
+                (next, low) = (w, d);
+            }
+        }
+        if next == v {
+            return (v, low);
+        }
+        v = next;
+    }
+}
+
+/// Up to this many vertices, a support point is found by reading them all:
+/// a short straight run beats the hops of hill climbing.
+const SCAN_ALL: usize = 16;

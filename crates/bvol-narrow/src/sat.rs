@@ -3,15 +3,16 @@
 //! each, and the edge-pair axes that are faces of their Minkowski difference.
 //!
 //! Everything runs in the space of the first shape, in f64, with the second
-//! mapped in by one relative frame: only the few directions and points that a
+//! mapped in by one relative isometry: only the few directions and points that a
 //! query touches are mapped, never the whole shape.
 
 use glam::DVec3;
 
 use crate::cluster::Cap;
-use crate::convex::{Convex, Plane};
-use crate::frame::Frame;
+use crate::convex::Convex;
+use crate::isometry::DIsometry3;
 use crate::lanes::{Witness, runs, set_bits};
+use crate::plane::Plane;
 
 /// Edge pairs whose directions are closer to parallel than this sine of their
 /// angle are skipped: their cross product is too short to be a direction, and
@@ -74,7 +75,7 @@ pub(crate) struct EdgeQuery {
 pub(crate) fn face_separation<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
-    rel: &Frame,
+    rel: &DIsometry3,
     f: u32,
     start: u32,
     bar: f64,
@@ -121,7 +122,7 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 pub(crate) fn face_query<R: Convex, O: Convex>(
     reference: &R,
     other: &O,
-    rel: &Frame,
+    rel: &DIsometry3,
     first: u32,
     floor: f64,
     witness: DVec3,
@@ -219,7 +220,7 @@ impl FaceSearch {
         &mut self,
         reference: &R,
         other: &O,
-        rel: &Frame,
+        rel: &DIsometry3,
         f: u32,
         bar: f64,
     ) {
@@ -275,12 +276,12 @@ impl FaceSearch {
 /// without a branch, as a bit mask of the arcs left, as the face query does
 /// (cold touching pairs of the narrow bench -6%); else a branch an arc.
 ///
-/// [`Arc::max`]: crate::convex::Arc::max
-/// [`Arc::inner`]: crate::convex::Arc::inner
+/// [`Arc::max`]: crate::arc::Arc::max
+/// [`Arc::inner`]: crate::arc::Arc::inner
 pub(crate) fn edge_query<A: Convex, B: Convex>(
     a: &A,
     b: &B,
-    rel: &Frame,
+    rel: &DIsometry3,
     floor: f64,
     witness: DVec3,
     masks: bool,
@@ -447,7 +448,7 @@ pub(crate) struct AxisGap {
 pub(crate) fn axis_gap<A: Convex, B: Convex>(
     a: &A,
     b: &B,
-    rel: &Frame,
+    rel: &DIsometry3,
     axis: DVec3,
     start_a: u32,
     start_b: u32,
@@ -466,7 +467,7 @@ pub(crate) fn axis_gap<A: Convex, B: Convex>(
 pub(crate) fn centre_axis<A: Convex, B: Convex>(
     a: &A,
     b: &B,
-    rel: &Frame,
+    rel: &DIsometry3,
     starts: Option<(u32, u32)>,
 ) -> Option<AxisGap> {
     let axis = centre_line(a, b, rel)?;
@@ -476,7 +477,7 @@ pub(crate) fn centre_axis<A: Convex, B: Convex>(
 
 /// The unit direction from A's inner centre to B's, in A's space; `None`
 /// for concentric shapes.
-pub(crate) fn centre_line<A: Convex, B: Convex>(a: &A, b: &B, rel: &Frame) -> Option<DVec3> {
+pub(crate) fn centre_line<A: Convex, B: Convex>(a: &A, b: &B, rel: &DIsometry3) -> Option<DVec3> {
     (rel.apply(b.inner_ball().0) - a.inner_ball().0).try_normalize()
 }
 
@@ -520,7 +521,7 @@ pub(crate) mod tests {
 
     /// Every pair of edges tested with IsMinkowskiFace, as Gregorius does: the
     /// greatest separation among the crossing pairs.
-    fn brute_force_edge_query(a: &Polyhedron, b: &Polyhedron, rel: &Frame) -> Option<f64> {
+    fn brute_force_edge_query(a: &Polyhedron, b: &Polyhedron, rel: &DIsometry3) -> Option<f64> {
         let (ta, tb) = (a.topology(), b.topology());
         let mut best: Option<f64> = None;
         for &ha in &ta.edges {
@@ -565,11 +566,11 @@ pub(crate) mod tests {
     }
 
     /// A random turn, and a shift of up to `reach` / 2 on each axis.
-    fn random_frame(state: &mut u64, reach: f64) -> Frame {
+    fn random_isometry(state: &mut u64, reach: f64) -> DIsometry3 {
         let q = DQuat::from_xyzw(next(state), next(state), next(state), next(state))
             - DQuat::from_xyzw(0.5, 0.5, 0.5, 0.5);
         let shift = DVec3::new(next(state), next(state), next(state)) - 0.5;
-        Frame { rotation: DMat3::from_quat(q.normalize()), translation: shift * reach }
+        DIsometry3 { rotation: DMat3::from_quat(q.normalize()), translation: shift * reach }
     }
 
     /// The Gauss-map walk finds the same greatest edge separation as testing
@@ -581,7 +582,7 @@ pub(crate) mod tests {
         let mut compared = 0;
         for case in 0..400 {
             let (a, b) = (cloud(&mut state, 4 + case % 40), cloud(&mut state, 4 + case % 23));
-            let rel = random_frame(&mut state, 0.6);
+            let rel = random_isometry(&mut state, 0.6);
             let witness = rel.apply(b.inner_ball().0);
             let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, true);
             // With the cap bounds as masks or a branch an arc, the same pair.
@@ -612,7 +613,7 @@ pub(crate) mod tests {
         let mut separated = 0;
         for case in 0..400 {
             let (a, b) = (cloud(&mut state, 4 + case % 60), cloud(&mut state, 4 + case % 37));
-            let rel = random_frame(&mut state, (case % 4) as f64);
+            let rel = random_isometry(&mut state, (case % 4) as f64);
             let witness = rel.apply(b.inner_ball().0);
             let first = (case as u32 * 7) % a.topology().face_count() as u32;
             let query = |masks| face_query(&a, &b, &rel, first, f64::NEG_INFINITY, witness, masks);

@@ -7,7 +7,7 @@ use glam::DVec3;
 
 use crate::boxes::check_obb;
 use crate::convex::Convex;
-use crate::frame::Frame;
+use crate::isometry::DIsometry3;
 use crate::manifold::{Manifold, rim};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
@@ -50,11 +50,11 @@ pub fn sphere_hull(
     b: &Polyhedron,
     pose_b: &Pose,
 ) -> Result<Collision, NarrowError> {
-    let frame_a = Frame::of_pose(pose_a, Body::A)?;
+    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
     check_sphere(a, Body::A)?;
-    let frame_b = Frame::of_pose(pose_b, Body::B)?;
-    let centre = frame_b.relative(&frame_a).apply(a.center.as_dvec3());
-    Ok(sphere_contact(centre, a.radius.into(), nearest_on_convex(b, centre), &frame_b))
+    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?;
+    let centre = iso_b.relative(&iso_a).apply(a.center.as_dvec3());
+    Ok(sphere_contact(centre, a.radius.into(), nearest_on_convex(b, centre), &iso_b))
 }
 
 /// Whether sphere `a` touches box `b`, and how: the closest point of the box
@@ -82,13 +82,13 @@ pub fn sphere_obb(
     b: &Obb,
     pose_b: &Pose,
 ) -> Result<Collision, NarrowError> {
-    let frame_a = Frame::of_pose(pose_a, Body::A)?;
+    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
     check_sphere(a, Body::A)?;
-    let frame_b = Frame::of_pose(pose_b, Body::B)?.with_box(b.center, b.axes);
+    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?.with_box(b.center, b.axes);
     check_obb(b, Body::B)?;
-    let centre = frame_b.relative(&frame_a).apply(a.center.as_dvec3());
+    let centre = iso_b.relative(&iso_a).apply(a.center.as_dvec3());
     let nearest = nearest_on_box(centre, b.half_extents.as_dvec3());
-    Ok(sphere_contact(centre, a.radius.into(), nearest, &frame_b))
+    Ok(sphere_contact(centre, a.radius.into(), nearest, &iso_b))
 }
 
 /// Whether two spheres touch, and how: along the line of their centres, from
@@ -115,16 +115,16 @@ pub fn sphere_sphere(
     b: &Sphere,
     pose_b: &Pose,
 ) -> Result<Collision, NarrowError> {
-    let frame_a = Frame::of_pose(pose_a, Body::A)?;
+    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
     check_sphere(a, Body::A)?;
-    let frame_b = Frame::of_pose(pose_b, Body::B)?;
+    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?;
     check_sphere(b, Body::B)?;
-    let ca = frame_a.apply(a.center.as_dvec3());
-    let cb = frame_b.apply(b.center.as_dvec3());
+    let ca = iso_a.apply(a.center.as_dvec3());
+    let cb = iso_b.apply(b.center.as_dvec3());
     let (ra, rb) = (f64::from(a.radius), f64::from(b.radius));
     let offset = cb - ca;
     let distance = offset.length();
-    let normal = offset.try_normalize().unwrap_or_else(|| frame_a.rotate(DVec3::Y));
+    let normal = offset.try_normalize().unwrap_or_else(|| iso_a.rotate(DVec3::Y));
     let gap = distance - ra - rb;
     if gap > 0.0 {
         return Ok(Collision::separated(normal, gap));
@@ -132,7 +132,7 @@ pub fn sphere_sphere(
     // Midway between A's surface point ca + ra n and B's cb - rb n.
     let mut manifold = Manifold::default();
     manifold.push((ca + normal * ra + cb - normal * rb) * 0.5, -gap);
-    Ok(Collision::touching(normal, -gap, &manifold, &Frame::IDENTITY))
+    Ok(Collision::touching(normal, -gap, &manifold, &DIsometry3::IDENTITY))
 }
 
 /// Whether a sphere's fields are finite and its radius not negative.
@@ -145,8 +145,13 @@ fn check_sphere(sphere: &Sphere, body: Body) -> Result<(), NarrowError> {
 }
 
 /// The answer for a sphere of `radius` about `centre`, both in the other
-/// shape's space, given where the centre is; `frame` maps that space to the world.
-fn sphere_contact(centre: DVec3, radius: f64, nearest: Nearest, frame: &Frame) -> Collision {
+/// shape's space, given where the centre is; `to_world` maps that space to the world.
+fn sphere_contact(
+    centre: DVec3,
+    radius: f64,
+    nearest: Nearest,
+    to_world: &DIsometry3,
+) -> Collision {
     let (normal, gap, surface) = match nearest {
         Nearest::Outside { point, fallback } => {
             let offset = point - centre;
@@ -160,12 +165,12 @@ fn sphere_contact(centre: DVec3, radius: f64, nearest: Nearest, frame: &Frame) -
         }
     };
     if gap > 0.0 {
-        return Collision::separated(frame.rotate(normal), gap);
+        return Collision::separated(to_world.rotate(normal), gap);
     }
     // Midway between the sphere's deepest point and the shape's surface point.
     let mut manifold = Manifold::default();
     manifold.push((centre + normal * radius + surface) * 0.5, -gap);
-    Collision::touching(frame.rotate(normal), -gap, &manifold, frame)
+    Collision::touching(to_world.rotate(normal), -gap, &manifold, to_world)
 }
 
 /// Where `centre` is with respect to a convex shape: outside some face plane,

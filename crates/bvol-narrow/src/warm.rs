@@ -7,7 +7,7 @@ use glam::{DVec3, Quat, Vec3};
 
 use crate::Polyhedron;
 use crate::convex::Convex;
-use crate::frame::Frame;
+use crate::isometry::DIsometry3;
 use crate::sat::{AxisGap, axis_gap, centre_axis, edge_separation, face_separation};
 use crate::topology::Topology;
 
@@ -218,7 +218,7 @@ fn down(x: f64) -> f32 {
 }
 
 /// The cached feature's axis and the exact gap along it between `a` and `b`
-/// (placed by their frames; `rel` maps B's space into A's), from true
+/// (placed by their isometries; `rel` maps B's space into A's), from true
 /// support points, with a point of each shape at the gap's ends; `None` if
 /// nothing usable is cached. A gap above [`answers`]'s margin settles the
 /// call; any gap is a lower bound of the greatest separation over all axes,
@@ -227,10 +227,10 @@ fn down(x: f64) -> f32 {
 pub(crate) fn retest<A: Convex, B: Convex>(
     feature: Feature,
     a: &A,
-    frame_a: &Frame,
+    iso_a: &DIsometry3,
     b: &B,
-    frame_b: &Frame,
-    rel: &Frame,
+    iso_b: &DIsometry3,
+    rel: &DIsometry3,
 ) -> Option<AxisGap> {
     let (ta, tb) = (a.topology(), b.topology());
     let (na, nb) = (ta.vertex_count() as u32, tb.vertex_count() as u32);
@@ -255,7 +255,7 @@ pub(crate) fn retest<A: Convex, B: Convex>(
             })
         }
         Feature::FaceB { face, support } if face < fb && support < na => {
-            let q = face_separation(b, a, &frame_b.relative(frame_a), face, support, exact);
+            let q = face_separation(b, a, &iso_b.relative(iso_a), face, support, exact);
             let on_face = corner(tb, face);
             Some(AxisGap {
                 axis: -rel.rotate(b.plane(face).normal),
@@ -294,7 +294,7 @@ pub(crate) fn margin<A: Convex, B: Convex>(a: &A, b: &B) -> f64 {
 fn edge_gap<A: Convex, B: Convex>(
     a: &A,
     b: &B,
-    rel: &Frame,
+    rel: &DIsometry3,
     edge_a: u32,
     half_edge_b: u32,
 ) -> Option<AxisGap> {
