@@ -1,11 +1,44 @@
 //! The node bound of a tree: what the tree needs of a bounding volume.
 
-use std::fmt::Debug;
+use std::fmt::{self, Debug};
 
 use bvol_volumes::{Aabb, Ray, Sphere};
 use glam::{Vec3, Vec3A};
 
-use crate::error::BoundError;
+/// Why a bound cannot go in a tree.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum BoundError {
+    /// A coordinate or the radius is NaN or infinite.
+    NonFinite,
+    /// `min > max` on an axis (0 = x, 1 = y, 2 = z).
+    Inverted {
+        /// The axis.
+        axis: usize,
+        /// The lower corner's coordinate on it.
+        min: f32,
+        /// The upper corner's coordinate on it.
+        max: f32,
+    },
+    /// A sphere with a negative radius.
+    NegativeRadius {
+        /// The radius.
+        radius: f32,
+    },
+}
+
+impl fmt::Display for BoundError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            BoundError::NonFinite => write!(f, "has a NaN or infinite coordinate"),
+            BoundError::Inverted { axis, min, max } => {
+                write!(f, "has min > max on axis {}: {min} > {max}", ["x", "y", "z"][*axis])
+            }
+            BoundError::NegativeRadius { radius } => write!(f, "has a negative radius {radius}"),
+        }
+    }
+}
+
+impl std::error::Error for BoundError {}
 
 /// A bounding volume a [`Tree`](crate::Tree) can be built of.
 ///

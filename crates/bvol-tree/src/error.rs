@@ -3,40 +3,8 @@
 
 use std::fmt;
 
-/// Why a bound cannot go in a tree.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum BoundError {
-    /// A coordinate or the radius is NaN or infinite.
-    NonFinite,
-    /// `min > max` on an axis (0 = x, 1 = y, 2 = z).
-    Inverted {
-        /// The axis.
-        axis: usize,
-        /// The lower corner's coordinate on it.
-        min: f32,
-        /// The upper corner's coordinate on it.
-        max: f32,
-    },
-    /// A sphere with a negative radius.
-    NegativeRadius {
-        /// The radius.
-        radius: f32,
-    },
-}
-
-impl fmt::Display for BoundError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            BoundError::NonFinite => write!(f, "has a NaN or infinite coordinate"),
-            BoundError::Inverted { axis, min, max } => {
-                write!(f, "has min > max on axis {}: {min} > {max}", ["x", "y", "z"][*axis])
-            }
-            BoundError::NegativeRadius { radius } => write!(f, "has a negative radius {radius}"),
-        }
-    }
-}
-
-impl std::error::Error for BoundError {}
+use crate::bound::BoundError;
+use crate::node::{ID_LIMIT, Slot};
 
 /// Why a tree operation was refused. The tree is left as it was.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -76,37 +44,13 @@ impl fmt::Display for TreeError {
             TreeError::IdOutOfRange { id } => write!(
                 f,
                 "id {id} is too large: ids index the tree's per-id arrays and must be below {}",
-                crate::tree::ID_LIMIT
+                ID_LIMIT
             ),
         }
     }
 }
 
 impl std::error::Error for TreeError {}
-
-/// Where a node is referred to from: the root slot, or one side of an
-/// internal node.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-pub enum Slot {
-    /// The tree's root.
-    Root,
-    /// Child `side` (0 or 1) of internal node `node`.
-    Child {
-        /// Internal node index.
-        node: u32,
-        /// Which child.
-        side: usize,
-    },
-}
-
-impl fmt::Display for Slot {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Slot::Root => write!(f, "the root slot"),
-            Slot::Child { node, side } => write!(f, "child {side} of node {node}"),
-        }
-    }
-}
 
 /// The first broken invariant [`Tree::validate`](crate::Tree::validate) found.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -49,6 +49,7 @@
 mod bound;
 mod build;
 mod changes;
+mod config;
 mod error;
 mod morton;
 mod node;
@@ -62,54 +63,10 @@ mod update;
 mod upkeep;
 mod validate;
 
-pub use bound::Bound;
-pub use error::{BoundError, Slot, TreeError, Violation};
+pub use bound::{Bound, BoundError};
+pub use config::Config;
+pub use error::{TreeError, Violation};
+pub use node::Slot;
 pub use pair_set::PairSet;
 pub use tree::{Move, Tree};
 pub use update::UpdateStats;
-
-/// Tuning of a [`Tree`]. The defaults were measured on 100 000 moving boxes
-/// (`benches/frame.rs`).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Config {
-    /// Fat margin as a fraction of a leaf's size (largest half extent, or
-    /// radius), added when a leaf is inserted or escapes its slack. Default
-    /// 0.1, Box2D's 0.1 m margin for bodies of about a metre.
-    pub fat_size: f32,
-    /// Fat margin in multiples of the distance the leaf's centre just moved,
-    /// so fast bodies get room for their next frames. Default 2.
-    pub fat_motion: f32,
-    /// Fraction of leaves moved at or above which [`Tree::update`] refits the
-    /// whole tree instead of updating leaves one by one. Default 0.001: with
-    /// every bound handed over, finding what moved reads all of them anyway,
-    /// so the refit (one more pass) wins from about 0.1% moved (per frame,
-    /// with the pair set: 1.7 ms per-leaf against 2.9 ms refit at 0.03%
-    /// moved, equal at 0.1%, 4.3 against 2.3 ms at 1%).
-    pub refit_fraction: f32,
-    /// SAH cost growth, relative to the cost after the last whole build,
-    /// that [`Tree::update`]'s refit path lets the tree reach before it
-    /// rebuilds it. Default 0.3: boxes moving 0.1 of their size per frame
-    /// reach it about every 20 frames; 0.1 and 0.2 rebuilt more often for no
-    /// gain. The rebuild is staged over the next frames, so none pays for
-    /// all of it, and starts at 0.35 of this growth so that it is installed
-    /// about when the tree would have reached it; where leaves teleport so
-    /// often that a staged rebuild would find many placed where they were,
-    /// it starts at this growth and takes three steps a frame.
-    pub drift: f64,
-    /// Most atoms (leaves and kept subtrees) one [`Tree::optimize`] call
-    /// places: the bound on the per-frame upkeep work. Default 4096, about
-    /// 1 ms (a call placing 1 100 atoms of a 100 000-leaf tree took 0.27 ms).
-    pub rebuild_budget: usize,
-}
-
-impl Default for Config {
-    fn default() -> Self {
-        Config {
-            fat_size: 0.1,
-            fat_motion: 2.0,
-            refit_fraction: 0.001,
-            drift: 0.3,
-            rebuild_budget: 4096,
-        }
-    }
-}

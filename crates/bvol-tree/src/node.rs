@@ -6,7 +6,18 @@
 //! sits in its parent's node, so pair finding never touches per-leaf memory.
 //! Leaves are not nodes: a reference with the top bit set is a leaf's user id.
 
+use std::fmt;
+
 use crate::Bound;
+
+/// Ids must be below this: they index the tree's per-id arrays directly,
+/// and a child reference marks a leaf with bit 31 (and a staged rebuild's
+/// deferred cluster with bit 30).
+pub(crate) const ID_LIMIT: u32 = 1 << 28;
+/// The parent recorded for the root (internal node or leaf).
+pub(crate) const ROOT: u32 = u32::MAX - 1;
+/// The parent recorded for a free node or an absent id.
+pub(crate) const NONE: u32 = u32::MAX;
 
 /// A child reference: an internal node's index, or a leaf's id with
 /// [`Ref::LEAF`] set.
@@ -99,5 +110,29 @@ impl<B: Bound> NodeOut<B> for [Ref; 2] {
     #[inline]
     fn set(&mut self, _: [B; 2], child: [Ref; 2]) {
         *self = child;
+    }
+}
+
+/// Where a node is referred to from: the root slot, or one side of an
+/// internal node.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Slot {
+    /// The tree's root.
+    Root,
+    /// Child `side` (0 or 1) of internal node `node`.
+    Child {
+        /// Internal node index.
+        node: u32,
+        /// Which child.
+        side: usize,
+    },
+}
+
+impl fmt::Display for Slot {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Slot::Root => write!(f, "the root slot"),
+            Slot::Child { node, side } => write!(f, "child {side} of node {node}"),
+        }
     }
 }

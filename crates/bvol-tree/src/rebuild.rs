@@ -3,8 +3,8 @@
 use crate::build::Atom;
 use crate::error::TreeError;
 use crate::morton::build_morton;
-use crate::node::{Node, Ref};
-use crate::tree::{NONE, ROOT, check_bound, check_id};
+use crate::node::{NONE, Node, ROOT, Ref};
+use crate::tree::{check_bound, check_id};
 use crate::{Bound, Config, Tree};
 
 impl<B: Bound> Tree<B> {

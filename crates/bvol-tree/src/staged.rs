@@ -24,8 +24,7 @@
 
 use crate::build::{Atom, Expand, build, size_class};
 use crate::morton::{Grid, LARGE_CLASSES, cut, lbvh, median_of, radix_sort};
-use crate::node::{Node, NodeOut, Ref};
-use crate::tree::NONE;
+use crate::node::{NONE, Node, NodeOut, Ref};
 use crate::update::{MANY_JUMPS, PREFETCH_AHEAD};
 use crate::{Bound, Tree};
 

@@ -1,17 +1,10 @@
 //! The tree: storage, and the per-leaf operations insert, remove and move.
 
 use crate::changes::Changes;
-use crate::error::{Slot, TreeError};
-use crate::node::{Node, Ref};
+use crate::error::TreeError;
+use crate::node::{ID_LIMIT, NONE, Node, ROOT, Ref, Slot};
 use crate::update::PREFETCH_AHEAD;
 use crate::{Bound, Config};
-
-/// Ids must be below this: they index the tree's per-id arrays directly.
-pub(crate) const ID_LIMIT: u32 = 1 << 28;
-/// The parent recorded for the root (internal node or leaf).
-pub(crate) const ROOT: u32 = u32::MAX - 1;
-/// The parent recorded for a free node or an absent id.
-pub(crate) const NONE: u32 = u32::MAX;
 
 /// A dynamic bounding-volume tree over leaves that carry user ids.
 ///

@@ -6,9 +6,9 @@ use rayon::prelude::*;
 
 use bvol_volumes::prefetch;
 
-use crate::node::{Node, Ref};
+use crate::node::{NONE, Node, ROOT, Ref};
 use crate::staged::{Installed, STAGED_FRAMES, Staged, TRICKLE_PACE};
-use crate::tree::{NONE, ROOT, check_bound, check_id};
+use crate::tree::{check_bound, check_id};
 use crate::{Bound, Tree, TreeError};
 
 /// What one update ([`Tree::update`], [`Tree::update_from`] or

@@ -3,8 +3,7 @@
 //! `fullBuild = false`), a budget of atoms at a time.
 
 use crate::build::{Atom, NoClusters, build};
-use crate::node::{Node, Ref};
-use crate::tree::NONE;
+use crate::node::{NONE, Node, Ref, Slot};
 use crate::{Bound, Tree};
 
 /// Upkeep state and reusable scratch.
@@ -172,7 +171,7 @@ impl<B: Bound> Tree<B> {
             }
         }
         self.link(slot, place(top), bound);
-        if let crate::error::Slot::Child { node, .. } = slot {
+        if let Slot::Child { node, .. } = slot {
             // The new bound is the exact merge of the same atoms, so it fits
             // where the old one did for boxes; a sphere merge may not.
             self.enlarge_from(node, bound, false);

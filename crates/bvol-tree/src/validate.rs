@@ -1,8 +1,7 @@
 //! The invariant check the tests run after every step.
 
-use crate::error::{Slot, Violation};
-use crate::node::Ref;
-use crate::tree::{NONE, ROOT};
+use crate::error::Violation;
+use crate::node::{NONE, ROOT, Ref, Slot};
 use crate::{Bound, Tree};
 
 impl<B: Bound> Tree<B> {
