@@ -2,6 +2,8 @@
 
 use std::fmt;
 
+use glam::Vec3;
+
 /// Why a bound could not be fitted to a point set.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum FitError {
@@ -26,6 +28,17 @@ impl fmt::Display for FitError {
 }
 
 impl std::error::Error for FitError {}
+
+/// Checks a point set before fitting: not empty, every coordinate finite.
+pub(crate) fn check_points(points: &[Vec3]) -> Result<(), FitError> {
+    if points.is_empty() {
+        return Err(FitError::Empty);
+    }
+    match points.iter().position(|p| !p.is_finite()) {
+        Some(index) => Err(FitError::NonFinite { index }),
+        None => Ok(()),
+    }
+}
 
 /// A fitting-method name that is not one of the known ones.
 #[derive(Clone, Debug, PartialEq, Eq)]

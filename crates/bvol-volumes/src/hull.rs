@@ -23,22 +23,22 @@ use glam::{DVec3, Vec3};
 use crate::FitError;
 
 /// A point set seen from its box centre, with its distance tolerance.
-struct Frame<'a> {
+struct CentredPoints<'a> {
     points: &'a [Vec3],
     centre: DVec3,
     /// Distances below this are noise of the f32 input.
     eps: f64,
 }
 
-impl<'a> Frame<'a> {
-    /// The frame of a non-empty set of finite points.
+impl<'a> CentredPoints<'a> {
+    /// The centred view of a non-empty set of finite points.
     fn new(points: &'a [Vec3]) -> Self {
         let (lo, hi) =
             points.iter().fold((points[0], points[0]), |(lo, hi), &p| (lo.min(p), hi.max(p)));
         let (lo, hi) = (lo.as_dvec3(), hi.as_dvec3());
         let half = (hi - lo) * 0.5;
         let eps = 3.0 * (half.x + half.y + half.z) * f64::from(f32::EPSILON);
-        Frame { points, centre: (lo + hi) * 0.5, eps }
+        CentredPoints { points, centre: (lo + hi) * 0.5, eps }
     }
 
     /// Point `i` relative to the centre: rounded, for plane distances.
@@ -105,64 +105,64 @@ impl ConvexHull {
     /// points within [`tolerance`](Self::tolerance) of a plane), a segment, or
     /// one point.
     pub fn new(points: &[Vec3]) -> Result<ConvexHull, FitError> {
-        crate::fit::check(points)?;
-        let frame = Frame::new(points);
+        crate::error::check_points(points)?;
+        let centred = CentredPoints::new(points);
         // Initial simplex from extreme points (Barber et al. section 3): the
         // widest pair of axis extremes, the point farthest from their line, then
         // the point farthest from that plane. Each that is within tolerance
         // lowers the dimension.
-        let (a, b) = widest_axis_extremes(&frame);
-        let (pa, pb) = (frame.at(a), frame.at(b));
-        let Some(axis) = (pb - pa).try_normalize().filter(|_| pa.distance(pb) > frame.eps) else {
-            return Ok(Self::point(&frame, a));
+        let (a, b) = widest_axis_extremes(&centred);
+        let (pa, pb) = (centred.at(a), centred.at(b));
+        let Some(axis) = (pb - pa).try_normalize().filter(|_| pa.distance(pb) > centred.eps) else {
+            return Ok(Self::point(&centred, a));
         };
-        let (c, off_line) = frame.farthest(|p| (p - pa).cross(axis).length());
-        if off_line <= frame.eps {
-            return Ok(Self::segment(&frame, axis));
+        let (c, off_line) = centred.farthest(|p| (p - pa).cross(axis).length());
+        if off_line <= centred.eps {
+            return Ok(Self::segment(&centred, axis));
         }
-        let normal = axis.cross(frame.at(c) - pa).normalize();
-        let (d, off_plane) = frame.farthest(|p| normal.dot(p - pa).abs());
-        if off_plane <= frame.eps {
-            return Ok(Self::flat(&frame, normal, axis));
+        let normal = axis.cross(centred.at(c) - pa).normalize();
+        let (d, off_plane) = centred.farthest(|p| normal.dot(p - pa).abs());
+        if off_plane <= centred.eps {
+            return Ok(Self::flat(&centred, normal, axis));
         }
-        match quickhull::triangulate(&frame, [a, b, c, d]) {
+        match quickhull::triangulate(&centred, [a, b, c, d]) {
             Some(tris) => {
-                let faces = merge::merge(&frame, &tris);
+                let faces = merge::merge(&centred, &tris);
                 if faces.len() >= 4 {
-                    return Ok(Self::solid(&frame, &tris.vertices, &faces));
+                    return Ok(Self::solid(&centred, &tris.vertices, &faces));
                 }
                 // Merging within tolerance left a sliver with two sides: it is flat.
-                Ok(Self::flat(&frame, normal, axis))
+                Ok(Self::flat(&centred, normal, axis))
             }
-            None => Ok(Self::flat(&frame, normal, axis)),
+            None => Ok(Self::flat(&centred, normal, axis)),
         }
     }
 
     /// The hull of a set whose points all coincide.
-    fn point(frame: &Frame, i: u32) -> Self {
-        Self::assemble(frame, 0, vec![i], &[], &[], &[])
+    fn point(centred: &CentredPoints, i: u32) -> Self {
+        Self::assemble(centred, 0, vec![i], &[], &[], &[])
     }
 
     /// The hull of a set within tolerance of a line along `axis`: its two ends.
-    fn segment(frame: &Frame, axis: DVec3) -> Self {
-        let (hi, _) = frame.farthest(|p| p.dot(axis));
-        let (lo, _) = frame.farthest(|p| -p.dot(axis));
+    fn segment(centred: &CentredPoints, axis: DVec3) -> Self {
+        let (hi, _) = centred.farthest(|p| p.dot(axis));
+        let (lo, _) = centred.farthest(|p| -p.dot(axis));
         if lo == hi {
             // Not reached: callers pass the axis of two points apart along it.
-            return Self::point(frame, lo);
+            return Self::point(centred, lo);
         }
-        Self::assemble(frame, 1, vec![lo.min(hi), lo.max(hi)], &[], &[], &[])
+        Self::assemble(centred, 1, vec![lo.min(hi), lo.max(hi)], &[], &[], &[])
     }
 
     /// The hull of a set within tolerance of a plane with unit `normal`: its
     /// polygon, once facing `normal` and once facing away.
-    fn flat(frame: &Frame, normal: DVec3, axis: DVec3) -> Self {
-        let ring = planar::polygon(frame, normal, axis);
+    fn flat(centred: &CentredPoints, normal: DVec3, axis: DVec3) -> Self {
+        let ring = planar::polygon(centred, normal, axis);
         if ring.len() < 3 {
-            return Self::segment(frame, axis);
+            return Self::segment(centred, axis);
         }
         // The plane fitted to the polygon (Newell): its area vector, through its mean.
-        let corners: Vec<DVec3> = ring.iter().map(|&i| frame.at(i)).collect();
+        let corners: Vec<DVec3> = ring.iter().map(|&i| centred.at(i)).collect();
         let o = corners[0];
         let normal = corners
             .windows(2)
@@ -178,26 +178,26 @@ impl ConvexHull {
         let local = |i: &u32| vertices.binary_search(i).unwrap_or(0) as u32;
         let loops: Vec<u32> = ring.iter().chain(&back).map(local).collect();
         let planes = [(normal, offset), (-normal, -offset)];
-        Self::assemble(frame, 2, vertices, &loops, &[0, n, 2 * n], &planes)
+        Self::assemble(centred, 2, vertices, &loops, &[0, n, 2 * n], &planes)
     }
 
     /// A solid hull from the merged faces over the triangulation's vertices
     /// (input indices, ascending); vertices no face uses are left out.
-    fn solid(frame: &Frame, tri_vertices: &[u32], faces: &merge::Polygons) -> Self {
+    fn solid(centred: &CentredPoints, tri_vertices: &[u32], faces: &merge::Polygons) -> Self {
         let mut used: Vec<u32> = faces.loops.clone();
         used.sort_unstable();
         used.dedup();
         let vertices: Vec<u32> = used.iter().map(|&v| tri_vertices[v as usize]).collect();
         let loops: Vec<u32> =
             faces.loops.iter().map(|v| used.binary_search(v).unwrap_or(0) as u32).collect();
-        Self::assemble(frame, 3, vertices, &loops, &faces.starts, &faces.planes)
+        Self::assemble(centred, 3, vertices, &loops, &faces.starts, &faces.planes)
     }
 
     /// The hull from its vertices (input indices, ascending), face loops
     /// (indices into them, concatenated, with their starts) and face planes in
-    /// the frame.
+    /// the centred.
     fn assemble(
-        frame: &Frame,
+        centred: &CentredPoints,
         dimension: u8,
         vertices: Vec<u32>,
         loops: &[u32],
@@ -205,14 +205,14 @@ impl ConvexHull {
         planes: &[(DVec3, f64)],
     ) -> Self {
         ConvexHull {
-            vertices: vertices.iter().map(|&i| frame.points[i as usize]).collect(),
+            vertices: vertices.iter().map(|&i| centred.points[i as usize]).collect(),
             face_vertices: loops.to_vec(),
             face_starts: if starts.is_empty() { vec![0] } else { starts.to_vec() },
             normals: planes.iter().map(|p| p.0).collect(),
-            // From the frame's origin to the input's.
-            offsets: planes.iter().map(|&(n, d)| d + n.dot(frame.centre)).collect(),
+            // Offsets about the box centre, moved to the input's origin.
+            offsets: planes.iter().map(|&(n, d)| d + n.dot(centred.centre)).collect(),
             dimension,
-            tolerance: frame.eps,
+            tolerance: centred.eps,
         }
     }
 
@@ -342,14 +342,14 @@ fn douglas_peucker(points: &[DVec3], eps: f64, keep: &mut [bool]) {
 
 /// The farthest apart pair among the points with the least and greatest
 /// coordinate on each axis (first on ties).
-fn widest_axis_extremes(frame: &Frame) -> (u32, u32) {
+fn widest_axis_extremes(centred: &CentredPoints) -> (u32, u32) {
     let mut extremes = [0u32; 6];
-    for (i, p) in (0..).zip(frame.points) {
+    for (i, p) in (0..).zip(centred.points) {
         for k in 0..3 {
-            if p[k] < frame.points[extremes[2 * k] as usize][k] {
+            if p[k] < centred.points[extremes[2 * k] as usize][k] {
                 extremes[2 * k] = i;
             }
-            if p[k] > frame.points[extremes[2 * k + 1] as usize][k] {
+            if p[k] > centred.points[extremes[2 * k + 1] as usize][k] {
                 extremes[2 * k + 1] = i;
             }
         }
@@ -357,7 +357,7 @@ fn widest_axis_extremes(frame: &Frame) -> (u32, u32) {
     let mut best = (extremes[0], extremes[0], -1.0);
     for (i, &a) in extremes.iter().enumerate() {
         for &b in &extremes[i + 1..] {
-            let d = frame.at(a).distance_squared(frame.at(b));
+            let d = centred.at(a).distance_squared(centred.at(b));
             if d > best.2 {
                 best = (a, b, d);
             }

@@ -57,7 +57,7 @@ impl<const N: usize> Kdop<N> {
     /// The tight k-DOP of a point set: per slab, min and max of the projections,
     /// computed in f64 and rounded outward.
     pub fn fit(points: &[Vec3]) -> Result<Self, FitError> {
-        crate::fit::check(points)?;
+        crate::error::check_points(points)?;
         Ok(Self::fit_f64(points.iter().map(|p| p.as_dvec3())))
     }
 
@@ -99,7 +99,8 @@ impl<const N: usize> Kdop<N> {
     }
 
     /// The k-DOP holding this one moved by a rigid pose. The slab directions
-    /// are fixed in space, so a rotated k-DOP is refit: on its moved vertices.
+    /// are fixed in space, so a rotated k-DOP is fitted again, to its moved
+    /// vertices.
     pub fn transformed(&self, pose: &Pose) -> Self {
         Self::fit_f64(self.vertices_f64().into_iter().map(|v| pose.apply_f64(v)))
     }

@@ -65,7 +65,7 @@ impl Obb {
     /// assert!(obb.half_extents.abs_diff_eq(Vec3::new(1.0, 2.0, 3.0), 1e-6));
     /// ```
     pub fn from_axes(axes: Mat3, points: &[Vec3]) -> Result<Obb, FitError> {
-        crate::fit::check(points)?;
+        crate::error::check_points(points)?;
         let m = basis(axes.x_axis.as_dvec3(), axes.y_axis.as_dvec3());
         Ok(Obb::on_basis(m, points))
     }
@@ -142,7 +142,7 @@ impl Obb {
     }
 
     /// A box holding both: centre between them, axes from the halfway rotation of
-    /// the two (quaternions of agreeing sign), extents refit on the 16 corners.
+    /// the two (quaternions of agreeing sign), extents fitted to the 16 corners.
     pub fn merge(&self, other: &Obb) -> Obb {
         let q0 = DQuat::from_mat3(&self.axes.as_dmat3()).normalize();
         let mut q1 = DQuat::from_mat3(&other.axes.as_dmat3()).normalize();

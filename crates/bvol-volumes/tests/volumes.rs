@@ -95,7 +95,7 @@ proptest! {
             let d = x.as_dvec3();
             prop_assert!(in_obb(&om, d) && in_sphere(&sm, d) && in_aabb(&am, d) && in_kdop(&km, d));
         }
-        // The OBB merge is refit tight on the 16 corners: each of its faces
+        // The OBB merge is fitted tight to the 16 corners: each of its faces
         // touches a corner of an input box.
         let corners = |b: Obb| (0..8).map(move |i| {
             let s = DVec3::new(if i & 1 == 0 { -1.0 } else { 1.0 }, if i & 2 == 0 { -1.0 } else { 1.0 }, if i & 4 == 0 { -1.0 } else { 1.0 });

@@ -6,8 +6,7 @@
 use glam::Vec3;
 
 use super::extremes::extremes;
-use super::min_sphere::exact;
-use super::min_sphere_f64;
+use super::min_sphere::{exact, min_sphere_f64};
 use super::simple_sphere::grow;
 use crate::Sphere;
 

@@ -18,20 +18,8 @@ use std::str::FromStr;
 
 use glam::Vec3;
 
+use crate::error::check_points;
 use crate::{Aabb, FitError, Obb, Sphere, UnknownMethod};
-
-pub(crate) use min_sphere::min_sphere_f64;
-
-/// Checks a point set before fitting: not empty, every coordinate finite.
-pub(crate) fn check(points: &[Vec3]) -> Result<(), FitError> {
-    if points.is_empty() {
-        return Err(FitError::Empty);
-    }
-    match points.iter().position(|p| !p.is_finite()) {
-        Some(index) => Err(FitError::NonFinite { index }),
-        None => Ok(()),
-    }
-}
 
 /// Defines a method enum with its names, `ALL`, `Display` and `FromStr`.
 macro_rules! methods {
@@ -126,7 +114,7 @@ impl Sphere {
     /// Empty input and non-finite coordinates are errors; degenerate sets (one
     /// point, duplicates, collinear, coplanar) give valid, tight spheres.
     pub fn fit(points: &[Vec3], method: SphereMethod) -> Result<Sphere, FitError> {
-        check(points)?;
+        check_points(points)?;
         Ok(match method {
             SphereMethod::AabbCenter => simple_sphere::aabb_center(points),
             SphereMethod::Centroid => simple_sphere::centroid(points),
@@ -145,7 +133,7 @@ impl Obb {
     /// Empty input and non-finite coordinates are errors; degenerate sets give
     /// valid boxes with zero extent where the points have none.
     pub fn fit(points: &[Vec3], method: ObbMethod) -> Result<Obb, FitError> {
-        check(points)?;
+        check_points(points)?;
         Ok(match method {
             ObbMethod::PcaPoints => pca::pca_points(points),
             ObbMethod::PcaHull => pca::pca_hull(points),
@@ -159,7 +147,7 @@ impl Obb {
 impl Aabb {
     /// The tight box of a point set (exact: min and max of the coordinates).
     pub fn fit(points: &[Vec3]) -> Result<Aabb, FitError> {
-        check(points)?;
+        check_points(points)?;
         Ok(Aabb::of_points(points))
     }
 }

@@ -21,7 +21,7 @@ use glam::{DVec2, DVec3};
 use super::planar::convex_chain;
 use super::predicates::cross_exact;
 use super::quickhull::Triangulation;
-use super::{Frame, douglas_peucker};
+use super::{CentredPoints, douglas_peucker};
 
 /// No region.
 const NONE: u32 = u32::MAX;
@@ -33,7 +33,7 @@ pub(super) struct Polygons {
     pub loops: Vec<u32>,
     /// Where each face's loop starts in `loops`, plus the end.
     pub starts: Vec<u32>,
-    /// Each face's plane in the frame: unit outward normal and offset.
+    /// Each face's plane about the box centre: unit outward normal and offset.
     pub planes: Vec<(DVec3, f64)>,
 }
 
@@ -56,22 +56,22 @@ impl Polygons {
 }
 
 /// The faces of the hull: coplanar triangles merged, collinear edge vertices removed.
-pub(super) fn merge(frame: &Frame, hull: &Triangulation) -> Polygons {
-    let pos: Vec<DVec3> = hull.vertices.iter().map(|&i| frame.at(i)).collect();
+pub(super) fn merge(centred: &CentredPoints, hull: &Triangulation) -> Polygons {
+    let pos: Vec<DVec3> = hull.vertices.iter().map(|&i| centred.at(i)).collect();
     let area_vectors: Vec<DVec3> = hull
         .corners
         .iter()
         .map(|t| {
-            let [a, b, c] = t.map(|v| frame.exact(hull.vertices[v as usize]));
+            let [a, b, c] = t.map(|v| centred.exact(hull.vertices[v as usize]));
             cross_exact(a, b, c)
         })
         .collect();
-    let regions = grow_regions(frame.eps, &pos, &area_vectors, hull);
+    let regions = grow_regions(centred.eps, &pos, &area_vectors, hull);
     let mut merged = vec![true; regions.planes.len()];
     loop {
         let (mut faces, owners) =
-            polygons(hull, &regions, &pos, &area_vectors, frame.eps, &mut merged);
-        let bent = remove_edge_vertices(&mut faces, &pos, frame.eps);
+            polygons(hull, &regions, &pos, &area_vectors, centred.eps, &mut merged);
+        let bent = remove_edge_vertices(&mut faces, &pos, centred.eps);
         let mut split = false;
         for (f, &r) in owners.iter().enumerate() {
             let r = r as usize;

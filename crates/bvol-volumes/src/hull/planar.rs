@@ -11,37 +11,37 @@
 
 use glam::{DVec2, DVec3};
 
-use super::{Frame, douglas_peucker};
+use super::{CentredPoints, douglas_peucker};
 
-/// The convex polygon of the frame's points projected on the plane with unit
+/// The convex polygon of the points projected on the plane with unit
 /// normal `normal`; `axis` is a unit vector in that plane. Input indices,
 /// counter-clockwise seen from the side `normal` points to; fewer than 3 if the
 /// points are collinear within tolerance.
-pub(super) fn polygon(frame: &Frame, normal: DVec3, axis: DVec3) -> Vec<u32> {
+pub(super) fn polygon(centred: &CentredPoints, normal: DVec3, axis: DVec3) -> Vec<u32> {
     let other = normal.cross(axis);
-    let flat = (0..frame.points.len() as u32).map(|i| {
-        let p = frame.at(i);
+    let flat = (0..centred.points.len() as u32).map(|i| {
+        let p = centred.at(i);
         (DVec2::new(p.dot(axis), p.dot(other)), i)
     });
     let mut ring = convex_chain(flat.collect());
     if ring.len() < 3 {
         return ring;
     }
-    let mean = ring.iter().map(|&i| frame.at(i)).sum::<DVec3>() / ring.len() as f64;
+    let mean = ring.iter().map(|&i| centred.at(i)).sum::<DVec3>() / ring.len() as f64;
     let farthest = |from: DVec3, ring: &[u32]| {
         (0..ring.len())
-            .map(|k| (k, frame.at(ring[k]).distance_squared(from)))
+            .map(|k| (k, centred.at(ring[k]).distance_squared(from)))
             .fold((0, -1.0), |m, x| if x.1 > m.1 { x } else { m })
             .0
     };
     let start = farthest(mean, &ring);
     ring.rotate_left(start);
-    let other_end = farthest(frame.at(ring[0]), &ring);
-    let mut pos: Vec<DVec3> = ring.iter().map(|&i| frame.at(i)).collect();
+    let other_end = farthest(centred.at(ring[0]), &ring);
+    let mut pos: Vec<DVec3> = ring.iter().map(|&i| centred.at(i)).collect();
     pos.push(pos[0]);
     let mut keep = vec![true; pos.len()];
-    douglas_peucker(&pos[..=other_end], frame.eps, &mut keep[..=other_end]);
-    douglas_peucker(&pos[other_end..], frame.eps, &mut keep[other_end..]);
+    douglas_peucker(&pos[..=other_end], centred.eps, &mut keep[..=other_end]);
+    douglas_peucker(&pos[other_end..], centred.eps, &mut keep[other_end..]);
     ring.into_iter().zip(keep).filter_map(|(i, k)| k.then_some(i)).collect()
 }
 
@@ -91,8 +91,8 @@ mod tests {
     fn square_with_inner_and_edge_points_keeps_its_corners_counter_clockwise() {
         let points: Vec<Vec3> =
             (0..5).flat_map(|i| (0..5).map(move |j| Vec3::new(i as f32, j as f32, 2.0))).collect();
-        let frame = Frame::new(&points);
-        let ring = polygon(&frame, DVec3::Z, DVec3::X);
+        let centred = CentredPoints::new(&points);
+        let ring = polygon(&centred, DVec3::Z, DVec3::X);
         let corners: Vec<Vec3> = ring.iter().map(|&i| points[i as usize]).collect();
         assert_eq!(
             corners,
@@ -108,8 +108,8 @@ mod tests {
     #[test]
     fn collinear_points_give_two_ends() {
         let points: Vec<Vec3> = (0..7).map(|i| Vec3::new(i as f32, 2.0 * i as f32, 0.0)).collect();
-        let frame = Frame::new(&points);
+        let centred = CentredPoints::new(&points);
         let axis = DVec3::new(1.0, 2.0, 0.0).normalize();
-        assert_eq!(polygon(&frame, DVec3::Z, axis).len(), 2);
+        assert_eq!(polygon(&centred, DVec3::Z, axis).len(), 2);
     }
 }

@@ -16,7 +16,7 @@
 
 use glam::{DVec3, Vec3};
 
-use super::Frame;
+use super::CentredPoints;
 use super::predicates::orient3d;
 
 /// No triangle or no point.
@@ -41,7 +41,7 @@ struct Tri {
     v: [u32; 3],
     /// `adj[i]`: the triangle across edge `v[i] -> v[i + 1]`.
     adj: [u32; 3],
-    /// Unit outward normal and offset in the frame (approximate: conflict lists only).
+    /// Unit outward normal and offset about the box centre (approximate: conflict lists only).
     normal: DVec3,
     offset: f64,
     /// The farthest point of the conflict list, and its distance.
@@ -72,7 +72,7 @@ struct HorizonEdge {
 
 /// The hull under construction, with scratch buffers reused at every step.
 struct Builder<'a> {
-    frame: &'a Frame<'a>,
+    centred: &'a CentredPoints<'a>,
     tris: Vec<Tri>,
     /// Points outside each triangle, parallel to `tris`.
     conflicts: Vec<Vec<Outside>>,
@@ -89,10 +89,10 @@ struct Builder<'a> {
     corners: Vec<u32>,
 }
 
-/// The hull of the frame's points, grown from the tetrahedron `simplex`, whose
+/// The hull of the points, grown from the tetrahedron `simplex`, whose
 /// corners must not be coplanar; `None` if they are.
-pub(super) fn triangulate(frame: &Frame, simplex: [u32; 4]) -> Option<Triangulation> {
-    let mut builder = Builder::new(frame, simplex)?;
+pub(super) fn triangulate(centred: &CentredPoints, simplex: [u32; 4]) -> Option<Triangulation> {
+    let mut builder = Builder::new(centred, simplex)?;
     while let Some(t) = builder.pending.pop_front() {
         let tri = builder.tris[t as usize];
         if tri.alive && tri.eye != NONE {
@@ -105,9 +105,9 @@ pub(super) fn triangulate(frame: &Frame, simplex: [u32; 4]) -> Option<Triangulat
 impl<'a> Builder<'a> {
     /// The tetrahedron, faces outward, with every point assigned to the face it is
     /// farthest outside of.
-    fn new(frame: &'a Frame<'a>, simplex: [u32; 4]) -> Option<Self> {
+    fn new(centred: &'a CentredPoints<'a>, simplex: [u32; 4]) -> Option<Self> {
         let [a, mut b, mut c, d] = simplex;
-        let sign = orient3d(frame.exact(a), frame.exact(b), frame.exact(c), frame.exact(d));
+        let sign = orient3d(centred.exact(a), centred.exact(b), centred.exact(c), centred.exact(d));
         if sign == 0.0 {
             return None;
         }
@@ -116,7 +116,7 @@ impl<'a> Builder<'a> {
             std::mem::swap(&mut b, &mut c);
         }
         let mut builder = Builder {
-            frame,
+            centred,
             tris: Vec::new(),
             conflicts: Vec::new(),
             free: Vec::new(),
@@ -137,8 +137,12 @@ impl<'a> Builder<'a> {
             let t = builder.alloc(v);
             builder.tris[t as usize].adj = adj;
         }
-        builder.orphans =
-            frame.points.iter().zip(0..).map(|(&point, index)| Outside { point, index }).collect();
+        builder.orphans = centred
+            .points
+            .iter()
+            .zip(0..)
+            .map(|(&point, index)| Outside { point, index })
+            .collect();
         builder.cone = vec![0, 1, 2, 3];
         builder.assign_orphans();
         Some(builder)
@@ -146,7 +150,7 @@ impl<'a> Builder<'a> {
 
     /// A new live triangle with the given corners (neighbours unset).
     fn alloc(&mut self, v: [u32; 3]) -> u32 {
-        let [pa, pb, pc] = v.map(|i| self.frame.at(i));
+        let [pa, pb, pc] = v.map(|i| self.centred.at(i));
         let normal = (pb - pa).cross(pc - pa).normalize_or_zero();
         let tri = Tri {
             v,
@@ -218,7 +222,7 @@ impl<'a> Builder<'a> {
         self.visible.clear();
         self.horizon.clear();
         self.walk.clear();
-        let p = self.frame.exact(eye);
+        let p = self.centred.exact(eye);
         if !self.sees(start, p) {
             return false;
         }
@@ -259,7 +263,7 @@ impl<'a> Builder<'a> {
     fn sees(&mut self, t: u32, p: DVec3) -> bool {
         let tri = &mut self.tris[t as usize];
         if tri.stamp != self.step {
-            let [a, b, c] = tri.v.map(|i| self.frame.exact(i));
+            let [a, b, c] = tri.v.map(|i| self.centred.exact(i));
             tri.stamp = self.step;
             tri.visible = orient3d(a, b, c, p) > 0.0;
         }
@@ -286,7 +290,7 @@ impl<'a> Builder<'a> {
         let tri = &mut self.tris[t as usize];
         (tri.eye, tri.eye_dist) = (NONE, f64::NEG_INFINITY);
         for q in list.iter() {
-            let dist = tri.normal.dot(self.frame.relative(q.point)) - tri.offset;
+            let dist = tri.normal.dot(self.centred.relative(q.point)) - tri.offset;
             if dist > tri.eye_dist {
                 (tri.eye, tri.eye_dist) = (q.index, dist);
             }
@@ -301,7 +305,7 @@ impl<'a> Builder<'a> {
     /// section 3).
     fn assign_orphans(&mut self) {
         for &p in &self.orphans {
-            let q = self.frame.relative(p.point);
+            let q = self.centred.relative(p.point);
             let mut best = (NONE, 0.0);
             for &t in &self.cone {
                 let tri = &self.tris[t as usize];
@@ -356,7 +360,7 @@ mod tests {
     /// Every edge in two triangles, once each way, each the other's neighbour
     /// across it; Euler's formula for a triangulated sphere (F = 2V - 4); and
     /// every point behind or on every triangle's plane, by the exact sign.
-    fn assert_exact_hull(frame: &Frame, hull: &Triangulation) {
+    fn assert_exact_hull(centred: &CentredPoints, hull: &Triangulation) {
         let (v, f) = (hull.vertices.len(), hull.corners.len());
         assert_eq!(f, 2 * v - 4);
         for (t, (corners, adjacent)) in hull.corners.iter().zip(&hull.adjacent).enumerate() {
@@ -366,9 +370,9 @@ mod tests {
                     (0..3).find(|&k| hull.corners[u][k] == b && hull.corners[u][(k + 1) % 3] == a);
                 assert_eq!(back.map(|k| hull.adjacent[u][k] as usize), Some(t));
             }
-            let [a, b, c] = corners.map(|k| frame.exact(hull.vertices[k as usize]));
-            for i in 0..frame.points.len() as u32 {
-                assert!(orient3d(a, b, c, frame.exact(i)) <= 0.0);
+            let [a, b, c] = corners.map(|k| centred.exact(hull.vertices[k as usize]));
+            for i in 0..centred.points.len() as u32 {
+                assert!(orient3d(a, b, c, centred.exact(i)) <= 0.0);
             }
         }
     }
@@ -379,10 +383,10 @@ mod tests {
         let points: Vec<Vec3> = (0..n * n * n)
             .map(|i| Vec3::new((i % n) as f32, (i / n % n) as f32, (i / n / n) as f32))
             .collect();
-        let frame = Frame::new(&points);
-        let hull = triangulate(&frame, [0, 3, 12, 63]).unwrap();
-        assert_exact_hull(&frame, &hull);
-        assert!(triangulate(&frame, [0, 1, 2, 3]).is_none(), "a flat simplex is refused");
+        let centred = CentredPoints::new(&points);
+        let hull = triangulate(&centred, [0, 3, 12, 63]).unwrap();
+        assert_exact_hull(&centred, &hull);
+        assert!(triangulate(&centred, [0, 1, 2, 3]).is_none(), "a flat simplex is refused");
     }
 
     #[test]
@@ -398,9 +402,9 @@ mod tests {
         };
         let points: Vec<Vec3> =
             (0..500).map(|_| Vec3::new(next(), next(), next()).normalize()).collect();
-        let frame = Frame::new(&points);
-        let hull = triangulate(&frame, [0, 1, 2, 3]).unwrap();
-        assert_exact_hull(&frame, &hull);
+        let centred = CentredPoints::new(&points);
+        let hull = triangulate(&centred, [0, 1, 2, 3]).unwrap();
+        assert_exact_hull(&centred, &hull);
         assert_eq!(hull.vertices.len(), points.len());
     }
 }
