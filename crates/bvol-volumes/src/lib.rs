@@ -24,6 +24,8 @@
 //! # Ok::<(), bvol_volumes::FitError>(())
 //! ```
 
+#![warn(missing_docs)]
+
 mod aabb;
 pub mod directions;
 mod error;
