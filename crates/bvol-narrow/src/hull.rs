@@ -26,12 +26,10 @@ const PREFER_ABS: f64 = 2e-5;
 /// pair must overlap for its face and edge queries to take their bounds as
 /// bit masks, a run of faces or arcs at a time without a branch each,
 /// instead of one branch an item. Deep, the bounds are weak and which items
-/// they rule out is unpredictable: on the narrow bench's random cold pairs
-/// the masks took 9% off (cold all 1.78 -> 1.62 ms a pass). Near touching,
-/// the first bound rules out most items and the branches are cheap: the
-/// moving pairs, each call cold, were 15% slower with masks for all cold
-/// calls, 6% slower with this depth. Warm calls never take them (+3 to
-/// +7% there).
+/// they rule out is unpredictable, so branches mispredict and masks win.
+/// Near touching, and on warm calls (whose witnesses lie near the contact),
+/// the first bound rules out most items, the branches are predictable, and
+/// masks would do the work of every item for nothing.
 const MASK_DEPTH: f64 = 0.25;
 
 /// Whether two convex polyhedra touch, and how.
@@ -149,8 +147,7 @@ fn query<A: Convex, B: Convex>(
     let slack = PREFER_ABS * a.size().max(b.size());
     // Two boxes take closed-form queries of all 15 axes, which cost about
     // what re-testing one cached axis does: they skip the retest, which
-    // would only add to touching pairs (about 12% of a touching box pair's
-    // time).
+    // would only add to the cost of touching pairs.
     if let (Some(box_a), Some(box_b)) = (a.as_box(), b.as_box()) {
         let q = box_queries(box_a, box_b, rel);
         let pair = Pair { a, iso_a, b, iso_b, rel, inv: &iso_b.relative(iso_a) };
@@ -191,7 +188,7 @@ fn full_query<A: Convex, B: Convex>(
     // cached axis's support points are, and of the centre line only its
     // direction is taken (the face queries start from it as a cold call's
     // do, so that ties between faces are broken alike): its two hill climbs
-    // were a sixth of a warm touching call.
+    // are spared, the cached witnesses lying nearer the contact.
     let centres = match cached {
         None => centre_axis(a, b, rel, None),
         Some(w) => centre_line(a, b, rel).map(|axis| AxisGap { axis, gap: f64::NEG_INFINITY, ..w }),

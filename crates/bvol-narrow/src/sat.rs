@@ -266,15 +266,15 @@ impl FaceSearch {
 /// the same with a cluster's cap and depth bound a whole cluster of arcs (a
 /// lone arc's own bounds are tighter, so its cluster's are not tested). Of
 /// the arc's own bounds, the last arc's support point, a point of B low
-/// along the arcs near that one, goes first (it spares most climbs of a cold
-/// touching pair: 27 to 8 per edge query on the narrow bench; tested before
-/// the witness's and the ball's, cold touching pairs took 3.5% less). Last, before
-/// any step is walked, B's support point against `n1`, where the walk
+/// along the arcs near that one, goes first: consecutive arcs of a cluster
+/// point alike, so it rules out most arcs before any climb, and at the cost
+/// of one dot product. Last, before any step is walked, B's support point against `n1`, where the walk
 /// starts, is a witness exact at one end of the arc.
 ///
 /// With `masks` the query takes the two cap bounds of a run of up to 64 arcs
 /// without a branch, as a bit mask of the arcs left, as the face query does
-/// (cold touching pairs of the narrow bench -6%); else a branch an arc.
+/// (for the same reason: deep, which arcs fall is unpredictable); else a
+/// branch an arc.
 ///
 /// [`Arc::max`]: crate::arc::Arc::max
 /// [`Arc::inner`]: crate::arc::Arc::inner
@@ -344,10 +344,9 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
             let Some((exit_t, hb, w)) = region_exit(b, v, d1, d2, t) else { break };
             let (pb, eb) = (rel.apply(b.vertex(v)), rel.rotate(b.vertex(w) - b.vertex(v)));
             // Only a pair that can beat the bar (the best so far, and
-            // the floor) is measured again from support points: a pair
-            // below the floor is never picked, so none is kept (each
-            // measure is two hill climbs; keeping the best below the
-            // floor took about three a touching query).
+            // the floor) is measured again from support points (two hill
+            // climbs): a pair below the floor is never picked, so none is
+            // kept.
             let bar = bar_of(*best);
             let beats = |s: f64| s > bar;
             let found = edge_separation(tail, dir_a, pb, eb, n1 + n2)
