@@ -216,6 +216,7 @@ impl Polyhedron {
     pub fn edge_count(&self) -> usize {
         self.topology.edges.len()
     }
+
     /// The cube `[-1, 1]^3`, built once.
     pub(crate) fn unit_cube() -> &'static Polyhedron {
         static CUBE: OnceLock<Polyhedron> = OnceLock::new();
@@ -314,9 +315,10 @@ impl Convex for Polyhedron {
 /// previous face's, arc's or last call's answer (often a step away), or the
 /// [`seed`](Convex::seed) for `dir` where there is none (never far). On a
 /// convex polyhedron a vertex no neighbour improves on is a global minimum
-/// (up to the hull's coplanarity tolerance), whatever the start, so the start
-/// is not compared with the seed: it is near already. Stops early at or below `limit`: a query that only needs to know whether
-/// the least beats a bar climbs no further.
+/// (up to the hull's coplanarity tolerance), whatever the start, so the
+/// start is not compared with the seed: it is near already. Stops early at
+/// or below `limit`: a query that only needs to know whether the least beats
+/// a bar climbs no further.
 fn hill_climb<S: Convex + ?Sized>(shape: &S, dir: DVec3, start: u32, limit: f64) -> (u32, f64) {
     let topology = shape.topology();
     let (mut v, mut low) = (start, dir.dot(shape.vertex(start)));

@@ -28,9 +28,9 @@ pub(crate) const PARALLEL_SINE: f64 = 1e-8;
 /// the pair is skipped. For edges close to parallel (yet above
 /// [`PARALLEL_SINE`]) the arcs run along each other, rounding decides where
 /// they cross, and the normal, set by the small angle between the edges, can
-/// lie far off A's arc: the separation along it then says nothing (a teapot's
-/// hull was called apart from a box it sank into); the sliver between such
-/// arcs is the face queries'.
+/// lie far off A's arc: the separation along it then says nothing (it can
+/// call a teapot's hull apart from a box sunk into it); the sliver between
+/// such arcs is the face queries'.
 const ARC_SLACK: f64 = 1e-9;
 
 /// An edge pair found by the walk is taken only if its edges are their

@@ -1088,7 +1088,7 @@ fn parry_finds_no_contact_at_scale_1e3() {
 }
 
 // ---------------------------------------------------------------------------
-// Cases that found bugs in bvol-narrow (kept as regression tests)
+// Hard cases: a hull against itself, a sliver box, near-parallel edges
 
 /// The teapot's hull (every point of teapot.obj) against itself at one pose:
 /// the overlap along any axis is the hull's width along it, so the depth must
@@ -1136,8 +1136,8 @@ fn teapot_overlapping_a_box_is_not_apart() {
 /// parallel edges facing, 6e-6 deep: every contact point must lie on both.
 /// (The least penetration there is a face of A whose clipped incident face
 /// stays above it, B's lowest vertex lying beside the face: the contact is
-/// where B's edges cross the face's rim; it once lay at that vertex, 3.5e-2
-/// outside A.)
+/// where B's edges cross the face's rim, not at that vertex, which lies
+/// 3.5e-2 outside A.)
 #[test]
 fn nearly_parallel_edges_contact_points_lie_on_both() {
     let teapot = shapes::mesh_hull("teapot", 1.0);
