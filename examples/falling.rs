@@ -67,7 +67,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
             let s = world.stats();
             println!(
                 "frame {frame:3}: {:4} candidates, {:4} after spheres, {:4} after OBBs, {:4} touching, {began:3} began, {:.2} ms",
-                s.tree_candidates,
+                s.candidates,
                 s.after_spheres,
                 s.after_obbs,
                 s.touching,

@@ -2,41 +2,12 @@
 //! calls that name them.
 
 use std::fmt;
-use std::ops::RangeInclusive;
 use std::sync::Arc;
 
 use bvol_volumes::Pose;
-use glam::Vec3;
 
 use crate::Shape;
-
-/// The largest magnitude a world takes for a coordinate: of a body's
-/// position, of a shape's vertex in its own frame, of a primitive's size.
-/// Within it every world bound, and every square and area of one, is finite
-/// in f32; beyond it a body's bounds could overflow and the body would be
-/// lost to the trees.
-pub const MAX_COORDINATE: f32 = 1e18;
-
-/// The squared lengths a body's rotation quaternion may have (it need not be
-/// a unit one). Within them the world bounds' f32 rotation, normalised in
-/// f32, is the exact rotation to a few ulps; a longer quaternion's squared
-/// length overflows, and a shorter one's loses its digits, and the bounds
-/// would no longer hold the shape the narrow phase tests.
-pub const ROTATION_LENGTH_SQUARED: RangeInclusive<f32> = 1e-18..=1e18;
-
-/// Whether every coordinate of `v` is at most [`MAX_COORDINATE`] in
-/// magnitude (a NaN one is not): the one test of that limit, for poses,
-/// shapes' points and primitives' sizes.
-pub(crate) fn within_limit(v: Vec3) -> bool {
-    v.abs().cmple(Vec3::splat(MAX_COORDINATE)).all()
-}
-
-/// Whether a world can place a body at `pose`: its position finite and within
-/// [`MAX_COORDINATE`], its rotation's squared length within
-/// [`ROTATION_LENGTH_SQUARED`] (which no NaN or infinite one is).
-pub(crate) fn placeable(pose: &Pose) -> bool {
-    within_limit(pose.position) && ROTATION_LENGTH_SQUARED.contains(&pose.rotation.length_squared())
-}
+use crate::limits::{MAX_COORDINATE, ROTATION_LENGTH_SQUARED};
 
 /// A body in a [`World`](crate::World): its slot and the slot's generation,
 /// so that a handle to a removed body is never taken for the body that

@@ -49,22 +49,27 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 
+mod bodies;
 mod body;
-mod digest;
-mod frame;
+mod broadphase;
+mod event;
+mod limits;
 mod mesh;
-pub mod scenes;
+mod narrow_phase;
+mod pipeline;
+mod scratch;
 mod shape;
-mod trace;
+mod stats;
 mod world;
 
-pub use body::{BodyDesc, BodyId, BodyKind, MAX_COORDINATE, ROTATION_LENGTH_SQUARED, WorldError};
+pub use body::{BodyDesc, BodyId, BodyKind, WorldError};
+pub use broadphase::{Broadphase, BruteForce};
 pub use bvol_narrow as narrow;
 pub use bvol_tree as tree;
 pub use bvol_volumes as volumes;
-pub use digest::PairDigest;
-pub use frame::{ContactEvent, EventKind, FrameStats};
+pub use event::{ContactEvent, EventKind};
+pub use limits::{MAX_COORDINATE, ROTATION_LENGTH_SQUARED};
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
 pub use shape::{FitOptions, HullPart, Part, Shape, ShapeError};
-pub use trace::{BoxTrace, TraceError, TraceWriter};
+pub use stats::FrameStats;
 pub use world::{RayHit, World};

@@ -9,7 +9,7 @@ use bvol_narrow::Polyhedron;
 use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
 use glam::{DVec3, Vec3};
 
-use crate::body::{MAX_COORDINATE, within_limit};
+use crate::limits::{MAX_COORDINATE, within_limit};
 use crate::mesh::{Mesh, MeshError, load_obj};
 
 /// The fitting methods of a shape's bounds. The defaults are the tightest:
@@ -225,8 +225,8 @@ impl Shape {
         Self::from_parts(vec![hull_part("tetrahedron", &corners)?], FitOptions::default())
     }
 
-    /// The shape with its sphere and OBB refitted by other methods.
-    pub fn refit(&self, fit: FitOptions) -> Result<Shape, ShapeError> {
+    /// The same parts, their sphere and OBB fitted by other methods.
+    pub fn with_fit(&self, fit: FitOptions) -> Result<Shape, ShapeError> {
         Self::from_parts(self.parts.clone(), fit)
     }
 

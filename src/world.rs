@@ -1,16 +1,21 @@
-//! The world: bodies in structure-of-arrays slots, their world bounds, the
-//! two trees (moving bodies, and resting ones: static and sleeping), and the
-//! per-pair state the frame keeps.
+//! The world: bodies in structure-of-arrays slots, their world bounds, two
+//! broadphases (moving bodies, and resting ones: static and sleeping), and
+//! the per-pair state the frame keeps. Its frame, [`World::update`], is in
+//! `pipeline.rs`.
 
 use std::sync::Arc;
 
-use bvol_narrow::WarmStart;
 use bvol_tree::Tree;
 use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere, prefetch};
 use glam::Vec3;
 
-use crate::body::placeable;
-use crate::frame::{BODIES_AHEAD, ContactEvent, FrameStats};
+use crate::bodies::{BODIES_AHEAD, Bodies};
+use crate::broadphase::Broadphase;
+use crate::event::ContactEvent;
+use crate::limits::placeable;
+use crate::narrow_phase::PairStates;
+use crate::scratch::Scratch;
+use crate::stats::FrameStats;
 use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
 
 /// Bodies that collide: add them, move them, and [`update`](World::update)
@@ -34,13 +39,16 @@ use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
 /// assert!((hit.t - 4.5).abs() < 1e-5);
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
+///
+/// Its broadphase is the dynamic tree unless another is named:
+/// `World::<BruteForce>::default()` tests every pair (see [`Broadphase`]).
 #[derive(Debug, Default)]
-pub struct World {
+pub struct World<B: Broadphase = Tree<Aabb>> {
     pub(crate) bodies: Bodies,
     /// Dynamic bodies, by slot.
-    pub(crate) moving: Tree<Aabb>,
+    pub(crate) moving: B,
     /// Static and sleeping bodies, by slot: never tested against each other.
-    pub(crate) resting: Tree<Aabb>,
+    pub(crate) resting: B,
     /// State of each pair that reached the narrow phase last frame, by
     /// `(lower slot, higher slot)`, sorted.
     pub(crate) pairs: PairStates,
@@ -52,86 +60,14 @@ pub struct World {
     pub(crate) scratch: Scratch,
 }
 
-/// Buffers that one frame fills and the next refills: their contents are
-/// never read across frames. A frame of 100 000 bodies fills tens of MB of
-/// them, and fresh pages cost a fault each (about 4 ms a frame in the
-/// narrow phase's, 0.6 ms in the sphere stage's).
-#[derive(Debug, Default)]
-pub(crate) struct Scratch {
-    /// The refit bodies' leaves: moved and new, of each tree.
-    pub(crate) leaves: [Vec<(u32, Aabb)>; 4],
-    /// The trees' overlapping pairs that the filters allow, in the trees'
-    /// order.
-    pub(crate) found: Vec<(u32, u32)>,
-    /// Those whose spheres overlap.
-    pub(crate) near: Vec<(u32, u32)>,
-    /// Those whose OBBs overlap too.
-    pub(crate) nearer: Vec<(u32, u32)>,
-    /// The counting sort's slot starts.
-    pub(crate) starts: Vec<u32>,
-    /// Those sorted.
-    pub(crate) sorted: Vec<(u32, u32)>,
-    /// The pair states' other buffer: the narrow phase moves last frame's
-    /// states into it, and keeps last frame's, emptied, for the next.
-    pub(crate) states: PairStates,
-    /// The narrow phase's events of each run of pairs, on several threads.
-    pub(crate) runs: Vec<Vec<ContactEvent>>,
-}
-
-/// Pairs' states by `(lower slot, higher slot)`, sorted by it.
-pub(crate) type PairStates = Vec<((u32, u32), PairState)>;
-
-/// What a pair carries from frame to frame.
-#[derive(Clone, Debug, Default)]
-pub(crate) struct PairState {
-    /// The warm start of the first pair of convex parts: the only one of
-    /// most pairs, kept inline so that no pair allocates.
-    pub(crate) warm: WarmStart,
-    /// Those of the other pairs of parts, for shapes of several: a boxed
-    /// slice, two words less than a `Vec` (every pair's state is moved each
-    /// frame, and most have none).
-    pub(crate) more: Box<[WarmStart]>,
-    /// Whether it touched.
-    pub(crate) touching: bool,
-}
-
-/// The bodies, one slot each, in structure-of-arrays form: each stage of a
-/// frame reads only the arrays it needs.
-#[derive(Debug, Default)]
-pub(crate) struct Bodies {
-    pub(crate) shapes: Vec<Option<Arc<Shape>>>,
-    pub(crate) generations: Vec<u32>,
-    pub(crate) poses: Vec<Pose>,
-    pub(crate) kinds: Vec<BodyKind>,
-    pub(crate) user_data: Vec<u64>,
-    pub(crate) layers: Vec<u32>,
-    pub(crate) masks: Vec<u32>,
-    /// World bounding spheres: 16 bytes a body, one load each for the
-    /// sphere test.
-    pub(crate) spheres: Vec<Sphere>,
-    /// World oriented boxes.
-    pub(crate) obbs: Vec<Obb>,
-    /// Tree leaf boxes, from the world sphere and OBB.
-    pub(crate) leaves: Vec<Aabb>,
-    /// Free slots, the last freed taken first.
-    pub(crate) free: Vec<u32>,
-    /// Slots whose pose changed since the last update, each once.
-    pub(crate) dirty: Vec<u32>,
-    pub(crate) is_dirty: Vec<bool>,
-    /// Whether a body was removed since the last update: `dirty` may then
-    /// hold slots that are free.
-    pub(crate) removed: bool,
-    pub(crate) count: usize,
-    /// Live bodies whose filter can turn a pair away (see `filters`).
-    pub(crate) filtering: usize,
-}
-
 impl World {
-    /// An empty world.
+    /// An empty world, its broadphase the dynamic tree.
     pub fn new() -> Self {
         Self::default()
     }
+}
 
+impl<B: Broadphase> World<B> {
     /// Number of bodies.
     pub fn len(&self) -> usize {
         self.bodies.count
@@ -142,13 +78,13 @@ impl World {
         self.bodies.count == 0
     }
 
-    /// Adds a body. Its bounds enter the trees at the next update. Its pose
+    /// Adds a body. Its bounds enter the broadphase at the next update. Its pose
     /// must be one a world can place a body at (see [`WorldError::BadPose`]).
     pub fn add_body(&mut self, desc: BodyDesc) -> Result<BodyId, WorldError> {
         let b = &mut self.bodies;
         let index = match b.free.last() {
             Some(&i) => i,
-            None if b.shapes.len() < Tree::<Aabb>::ID_LIMIT as usize => b.shapes.len() as u32,
+            None if b.shapes.len() < B::ID_LIMIT as usize => b.shapes.len() as u32,
             None => return Err(WorldError::Full),
         };
         // A free slot's generation is even; a live body's is the next, odd.
@@ -175,7 +111,7 @@ impl World {
     /// Removes a body. Its contacts end at the next update.
     pub fn remove_body(&mut self, id: BodyId) -> Result<(), WorldError> {
         let i = self.slot(id)?;
-        self.tree_of(self.bodies.kinds[i]).remove(id.index).ok();
+        self.broadphase_of(self.bodies.kinds[i]).remove(id.index).ok();
         let mut orphaned = Vec::new();
         self.pairs.retain(|&((a, b), ref state)| {
             let gone = a == id.index || b == id.index;
@@ -231,12 +167,12 @@ impl World {
     }
 
     /// Changes how a body takes part: a sleeping or static body moves to
-    /// the resting tree, a dynamic one to the moving tree.
+    /// the resting broadphase, a dynamic one to the moving broadphase.
     pub fn set_kind(&mut self, id: BodyId, kind: BodyKind) -> Result<(), WorldError> {
         let i = self.slot(id)?;
         let old = self.bodies.kinds[i];
         if (old == BodyKind::Dynamic) != (kind == BodyKind::Dynamic) {
-            self.tree_of(old).remove(id.index).ok();
+            self.broadphase_of(old).remove(id.index).ok();
             self.bodies.mark_dirty(id.index);
         }
         self.bodies.kinds[i] = kind;
@@ -283,18 +219,25 @@ impl World {
             .map(|i| BodyId { index: i as u32, generation: b.generations[i] })
     }
 
-    /// The dynamic bodies' tree (its leaves are slots), for inspection.
-    pub fn moving_tree(&self) -> &Tree<Aabb> {
+    /// A body's box in the broadphase (around its world sphere and OBB), as
+    /// of the last update.
+    pub fn world_aabb(&self, id: BodyId) -> Result<Aabb, WorldError> {
+        Ok(self.bodies.leaves[self.slot(id)?])
+    }
+
+    /// The dynamic bodies' broadphase (its leaves are slots), for
+    /// inspection: its nodes are what a debug view draws.
+    pub fn moving_broadphase(&self) -> &B {
         &self.moving
     }
 
-    /// The static and sleeping bodies' tree, for inspection.
-    pub fn resting_tree(&self) -> &Tree<Aabb> {
+    /// The static and sleeping bodies' broadphase, for inspection.
+    pub fn resting_broadphase(&self) -> &B {
         &self.resting
     }
 
     /// The nearest body a ray meets within `max_t`, as of the last update:
-    /// the trees give candidates nearest first, each tested on its OBB and
+    /// the broadphases give candidates nearest first, each tested on its OBB and
     /// then on its shape. Ties go to the lower slot.
     pub fn ray_cast(&self, ray: &Ray, max_t: f32) -> Option<RayHit> {
         // The shape lies inside its leaf: its entry is never before the
@@ -308,6 +251,33 @@ impl World {
         let body = self.bodies.id_of(slot);
         let user_data = self.bodies.user_data[slot as usize];
         Some(RayHit { body, t, point: ray.origin + ray.direction * t, user_data })
+    }
+
+    /// Calls `found` for every body whose box (see
+    /// [`world_aabb`](Self::world_aabb)) overlaps or touches `region`, as of
+    /// the last update: the moving bodies, then the resting ones, each in
+    /// its broadphase's order.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use bvol::volumes::{Aabb, Pose};
+    /// use bvol::{BodyDesc, Shape, World};
+    /// use glam::{Quat, Vec3};
+    ///
+    /// let mut world = World::new();
+    /// let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5))?);
+    /// let near = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY))?;
+    /// world.add_body(BodyDesc::new(cube, Pose::new(Vec3::X * 5.0, Quat::IDENTITY)))?;
+    /// world.update();
+    /// let mut found = Vec::new();
+    /// world.query(&Aabb::new(Vec3::splat(-1.0), Vec3::splat(1.0)), |id| found.push(id));
+    /// assert_eq!(found, [near]);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn query(&self, region: &Aabb, mut found: impl FnMut(BodyId)) {
+        for broadphase in [&self.moving, &self.resting] {
+            broadphase.query(region, |slot| found(self.bodies.id_of(slot)));
+        }
     }
 
     /// Where a ray meets body `slot`: its world OBB first, then its shape in
@@ -346,8 +316,8 @@ impl World {
         self.bodies.generations.get(id.index as usize) == Some(&id.generation)
     }
 
-    /// The tree that holds bodies of `kind`.
-    pub(crate) fn tree_of(&mut self, kind: BodyKind) -> &mut Tree<Aabb> {
+    /// The broadphase that holds bodies of `kind`.
+    pub(crate) fn broadphase_of(&mut self, kind: BodyKind) -> &mut B {
         if kind == BodyKind::Dynamic { &mut self.moving } else { &mut self.resting }
     }
 }
@@ -363,37 +333,6 @@ pub struct RayHit {
     pub point: Vec3,
     /// The body's user data.
     pub user_data: u64,
-}
-
-impl Bodies {
-    /// One more slot, empty.
-    fn grow(&mut self) {
-        self.shapes.push(None);
-        self.generations.push(0);
-        self.poses.push(Pose::IDENTITY);
-        self.kinds.push(BodyKind::Dynamic);
-        self.user_data.push(0);
-        self.layers.push(0);
-        self.masks.push(0);
-        self.spheres.push(Sphere::default());
-        self.obbs.push(Obb::default());
-        self.leaves.push(Aabb::default());
-        self.is_dirty.push(false);
-    }
-
-    /// Whether the body in `slot` can turn a pair away by its filter: it
-    /// meets every body only when it is on some layer and collides with all.
-    pub(crate) fn filters(&self, slot: u32) -> bool {
-        let i = slot as usize;
-        self.layers[i] == 0 || self.masks[i] != u32::MAX
-    }
-
-    /// Queues a slot for the next update's refit.
-    fn mark_dirty(&mut self, slot: u32) {
-        if !std::mem::replace(&mut self.is_dirty[slot as usize], true) {
-            self.dirty.push(slot);
-        }
-    }
 }
 
 /// `Ok` when a body can be placed at `pose` (see [`placeable`]).

@@ -178,7 +178,7 @@ impl App {
     /// Refits every shape's bounds by `fit` and hands the bodies the new
     /// shapes; on failure the old ones stay and the log says why.
     pub fn set_fit(&mut self, fit: FitOptions) {
-        if let Err(e) = self.library.refit(fit) {
+        if let Err(e) = self.library.set_fit(fit) {
             self.report(format!("refit with {} / {} failed: {e}", fit.sphere, fit.obb));
             return;
         }

@@ -1,7 +1,7 @@
 //! What a frame draws, built from the app's state: each body as an instance
 //! of its shape's mesh, and the overlays the user switched on as lines.
 
-use bvol::BodyId;
+use bvol::{BodyId, Broadphase};
 use bvol::volumes::{Aabb, Obb, Sphere};
 use glam::{Mat3, Mat4, Quat, Vec3};
 
@@ -77,8 +77,8 @@ pub fn build(app: &App, list: &mut DrawList, view: View) {
     }
     if s.show_tree {
         let (first, last) = s.tree_depths;
-        for tree in [world.moving_tree(), world.resting_tree()] {
-            tree.visit_nodes(|depth, aabb| {
+        for broadphase in [world.moving_broadphase(), world.resting_broadphase()] {
+            Broadphase::visit_nodes(broadphase, |depth, aabb| {
                 if (first..=last).contains(&depth) {
                     aabb_lines(list, aabb, depth_color(depth));
                 }

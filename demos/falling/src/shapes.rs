@@ -100,12 +100,12 @@ impl ShapeLibrary {
         library
     }
 
-    /// The same shapes with their bounds refitted by other methods (the
+    /// The same shapes with their bounds fitted by other methods (the
     /// collision parts and render meshes are unchanged). On error no shape
     /// has changed.
-    pub fn refit(&mut self, fit: FitOptions) -> Result<(), ShapeError> {
+    pub fn set_fit(&mut self, fit: FitOptions) -> Result<(), ShapeError> {
         let shapes: Vec<Shape> =
-            self.entries.iter().map(|e| e.shape.refit(fit)).collect::<Result<_, _>>()?;
+            self.entries.iter().map(|e| e.shape.with_fit(fit)).collect::<Result<_, _>>()?;
         for (entry, shape) in self.entries.iter_mut().zip(shapes) {
             entry.shape = Arc::new(shape);
         }
@@ -160,7 +160,7 @@ fn primitives(fit: FitOptions) -> Result<Vec<ShapeEntry>, ShapeError> {
                     (mesh.clone(), mesh)
                 }
             };
-            let shape = if fit == FitOptions::default() { shape } else { shape.refit(fit)? };
+            let shape = if fit == FitOptions::default() { shape } else { shape.with_fit(fit)? };
             let name = name.to_owned();
             Ok(ShapeEntry { name, shape: Arc::new(shape), mesh, far_mesh, source: None })
         })
@@ -477,7 +477,7 @@ mod tests {
             FitOptions { sphere: SphereMethod::Centroid, obb: ObbMethod::Dito14 },
         ];
         for fit in fits {
-            library.refit(fit).unwrap();
+            library.set_fit(fit).unwrap();
             for (entry, mesh) in
                 library.entries.iter().flat_map(|e| [(e, &e.mesh), (e, &e.far_mesh)])
             {

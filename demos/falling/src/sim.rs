@@ -1054,7 +1054,7 @@ mod tests {
         }
         let before: Vec<Body> = sim.bodies().to_vec();
         let fit = FitOptions { sphere: SphereMethod::Ritter, obb: ObbMethod::PcaPoints };
-        library.refit(fit).unwrap();
+        library.set_fit(fit).unwrap();
         sim.replace_shapes(&library.shapes()).unwrap();
         assert_eq!(sim.world().len(), 41, "the floor and the 40 bodies");
         for (i, (old, new)) in before.iter().zip(sim.bodies()).enumerate() {

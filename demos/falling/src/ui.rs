@@ -167,8 +167,8 @@ fn figures(ui: &mut Ui, app: &App) {
         ui.label("ms");
         ui.end_row();
         for (name, pairs, time) in [
-            ("world bounds", s.refit, s.bounds_time),
-            ("tree candidates", s.tree_candidates, s.tree_time),
+            ("world bounds", s.moved, s.bounds_time),
+            ("broadphase candidates", s.candidates, s.broadphase_time),
             ("after spheres", s.after_spheres, s.spheres_time),
             ("after OBBs", s.after_obbs, s.obbs_time),
             ("touching", s.touching, s.narrow_time),

@@ -135,7 +135,7 @@ fn headless_run_shows_bodies_and_the_worlds_own_pairs() {
     let last = frames.last().unwrap();
     let s = world.stats();
     for (name, want) in [
-        ("tree_candidates", s.tree_candidates),
+        ("candidates", s.candidates),
         ("after_spheres", s.after_spheres),
         ("after_obbs", s.after_obbs),
         ("touching", s.touching),

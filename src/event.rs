@@ -1,0 +1,37 @@
+//! What a world's update reports of each pair of bodies that touch or did.
+
+use bvol_narrow::Contact;
+
+use crate::BodyId;
+
+/// What happened to a touching pair.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum EventKind {
+    /// It touches now and did not last frame.
+    Began,
+    /// It touched last frame and still does.
+    Persisting,
+    /// It touched last frame and does not now (or a body was removed).
+    Ended,
+}
+
+/// A contact event: the two bodies (`a` before `b` by slot) and, unless it
+/// ended, how they touch, the normal pointing from `a` to `b`.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ContactEvent {
+    /// What happened.
+    pub kind: EventKind,
+    /// The body with the lower slot.
+    pub a: BodyId,
+    /// The other body.
+    pub b: BodyId,
+    /// The contact: `None` for an ended pair.
+    pub contact: Option<Contact>,
+}
+
+impl ContactEvent {
+    /// The end of a pair's contact.
+    pub(crate) fn ended(a: BodyId, b: BodyId) -> Self {
+        ContactEvent { kind: EventKind::Ended, a, b, contact: None }
+    }
+}

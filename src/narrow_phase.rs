@@ -1,0 +1,230 @@
+//! The narrow phase: each pair that no bound could rule out is tested on its
+//! shapes' convex parts, with its warm starts from last frame, and its event
+//! written as it is tested: runs of pairs on rayon tasks, their lists joined
+//! in order, so the events are the same on any number of threads.
+
+use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
+use bvol_volumes::{Pose, prefetch};
+use rayon::prelude::*;
+
+use crate::BodyKind;
+use crate::bodies::Bodies;
+use crate::event::{ContactEvent, EventKind};
+use crate::shape::Part;
+
+/// How many pairs ahead the narrow phase asks for the second body's data.
+const AHEAD: usize = 8;
+/// Pairs tested per rayon task by the narrow phase, at least: a hull pair
+/// takes microseconds, so a thousand-body pile's thousand pairs still split.
+const NARROW_CHUNK: usize = 32;
+/// Runs of pairs a thread in the narrow phase, at most: enough for work
+/// stealing to even out, few enough that joining their events costs little.
+const RUNS_A_THREAD: usize = 16;
+
+/// Pairs' states by `(lower slot, higher slot)`, sorted by it.
+pub(crate) type PairStates = Vec<((u32, u32), PairState)>;
+
+/// What a pair carries from frame to frame.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct PairState {
+    /// The warm start of the first pair of convex parts: the only one of
+    /// most pairs, kept inline so that no pair allocates.
+    pub(crate) warm: WarmStart,
+    /// Those of the other pairs of parts, for shapes of several: a boxed
+    /// slice, two words less than a `Vec` (every pair's state is moved each
+    /// frame, and most have none).
+    pub(crate) more: Box<[WarmStart]>,
+    /// Whether it touched.
+    pub(crate) touching: bool,
+}
+
+/// The narrow phase of one frame: each of `pairs` (sorted by slot) tested,
+/// with its warm starts from last frame, and the events written after those
+/// already in `events` (the contacts of removed bodies, sorted in with the
+/// rest). Returns how many touch.
+///
+/// `states` holds last frame's pair states, sorted as `pairs` are, and gets
+/// this frame's: one merge pass moves each pair's state into the spare
+/// buffer, where the test reads and updates it in place (a state is moved
+/// once a frame). `spare` and `runs` are buffers kept from frame to frame.
+pub(crate) fn narrow_phase(
+    bodies: &Bodies,
+    pairs: &[(u32, u32)],
+    states: &mut PairStates,
+    spare: &mut PairStates,
+    runs: &mut Vec<Vec<ContactEvent>>,
+    events: &mut Vec<ContactEvent>,
+) -> usize {
+    let mut next = std::mem::take(spare);
+    let left = carry_over(states, pairs, &mut next);
+    // Pairs no longer candidates that touched have ended, unless both
+    // bodies rest: a pile that falls asleep keeps its contacts, unchanged
+    // and unreported, until one of them moves again.
+    let kinds = &bodies.kinds;
+    let resting = |(a, b): (u32, u32)| {
+        kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
+    };
+    let (kept, ended): (PairStates, PairStates) =
+        left.into_iter().filter(|(_, state)| state.touching).partition(|&(key, _)| resting(key));
+    let ended: Vec<(u32, u32)> = ended.into_iter().map(|(key, _)| key).collect();
+    let orphans = !events.is_empty();
+    let touching = if rayon::current_num_threads() == 1 || next.is_empty() {
+        test_run(bodies, &mut next, pairs, &ended, events)
+    } else {
+        test_in_runs(bodies, &mut next, pairs, &ended, runs, events)
+    };
+    if !kept.is_empty() {
+        // Two sorted runs: the stable sort merges them in one pass.
+        next.extend(kept);
+        next.sort_by_key(|&(key, _)| key);
+    }
+    if orphans {
+        events.sort_by_key(|e| (e.a.index, e.b.index));
+    }
+    // Last frame's buffer, emptied by the merge, serves the next frame.
+    *spare = std::mem::replace(states, next);
+    touching
+}
+
+/// Last frame's pair states (sorted by key) matched with this frame's
+/// sorted `pairs`: `next` gets each pair with its state (a fresh one for a
+/// new pair); the old pairs that are not among them are returned, in order.
+/// `old` is left empty, its buffer kept.
+fn carry_over(old: &mut PairStates, pairs: &[(u32, u32)], next: &mut PairStates) -> PairStates {
+    let mut old = old.drain(..).peekable();
+    next.clear();
+    let mut left = Vec::new();
+    for &key in pairs {
+        while let Some(gone) = old.next_if(|(k, _)| *k < key) {
+            left.push(gone);
+        }
+        let state = old.next_if(|(k, _)| *k == key).map(|(_, state)| state);
+        next.push((key, state.unwrap_or_default()));
+    }
+    left.extend(old);
+    left
+}
+
+/// [`test_run`] over `states` (not empty; with their `pairs`) in
+/// runs, a rayon task each, each with the `ended` pairs whose keys fall
+/// in its run merged in (the first run's from the start, the last's to
+/// the end): the events come out sorted with no sort, and the runs'
+/// lists (in `runs`, buffers kept from frame to frame) are joined in
+/// order, so they are the same on any number of threads. (One pass after
+/// the tests, over their contacts gathered in a list, took a tenth of the
+/// stage on 100 000 cubes.) Returns how many touch.
+fn test_in_runs(
+    bodies: &Bodies,
+    states: &mut [((u32, u32), PairState)],
+    pairs: &[(u32, u32)],
+    ended: &[(u32, u32)],
+    runs: &mut Vec<Vec<ContactEvent>>,
+    events: &mut Vec<ContactEvent>,
+) -> usize {
+    let run = states.len().div_ceil(RUNS_A_THREAD * rayon::current_num_threads());
+    let run = run.max(NARROW_CHUNK);
+    let firsts: Vec<(u32, u32)> = states.iter().step_by(run).map(|&(key, _)| key).collect();
+    runs.resize_with(firsts.len(), Vec::new);
+    // The ended keys below run `r`'s first.
+    let below =
+        |r: usize| firsts.get(r).map_or(ended.len(), |&k| ended.partition_point(|&e| e < k));
+    let touching = states
+        .par_chunks_mut(run)
+        .zip(runs.par_iter_mut())
+        .enumerate()
+        .map(|(r, (chunk, out))| {
+            let gone = &ended[if r == 0 { 0 } else { below(r) }..below(r + 1)];
+            out.clear();
+            test_run(bodies, chunk, &pairs[r * run..], gone, out)
+        })
+        .sum();
+    runs.iter().for_each(|out| events.extend_from_slice(out));
+    touching
+}
+
+/// Tests a run of sorted pairs, updating their states, and appends their
+/// events to `events`, with the `ended` pairs (sorted, among the run's
+/// keys) merged in; returns how many touch. `ahead` is the pairs from the
+/// run's first on: it asks for a later pair's second body [`AHEAD`] pairs
+/// early.
+fn test_run(
+    bodies: &Bodies,
+    run: &mut [((u32, u32), PairState)],
+    ahead: &[(u32, u32)],
+    ended: &[(u32, u32)],
+    events: &mut Vec<ContactEvent>,
+) -> usize {
+    let mut ended = ended.iter().peekable();
+    let mut touching = 0;
+    for (k, &mut ((a, b), ref mut state)) in run.iter_mut().enumerate() {
+        if let Some(&(_, later)) = ahead.get(k + AHEAD) {
+            prefetch(&bodies.poses[later as usize]);
+            prefetch(&bodies.shapes[later as usize]);
+        }
+        let contact = collide(bodies, a, b, state);
+        let was = state.touching;
+        state.touching = contact.is_some();
+        touching += usize::from(state.touching);
+        let kind = match (was, state.touching) {
+            (false, true) => EventKind::Began,
+            (true, true) => EventKind::Persisting,
+            (true, false) => EventKind::Ended,
+            (false, false) => continue,
+        };
+        while let Some(&gone) = ended.next_if(|&&key| key < (a, b)) {
+            events.push(bodies.ended(gone.0, gone.1));
+        }
+        events.push(ContactEvent { kind, a: bodies.id_of(a), b: bodies.id_of(b), contact });
+    }
+    events.extend(ended.map(|&(a, b)| bodies.ended(a, b)));
+    touching
+}
+
+/// How bodies `a` and `b` touch, if they do: the deepest contact over
+/// their pairs of convex parts, the normal from `a` to `b`.
+fn collide(bodies: &Bodies, a: u32, b: u32, state: &mut PairState) -> Option<Contact> {
+    let (a, b) = (a as usize, b as usize);
+    let (shape_a, shape_b) = (bodies.shapes[a].as_ref()?, bodies.shapes[b].as_ref()?);
+    let (parts_a, parts_b) = (shape_a.parts(), shape_b.parts());
+    let more = parts_a.len() * parts_b.len() - 1;
+    if state.more.len() != more {
+        state.more = vec![WarmStart::default(); more].into_boxed_slice();
+    }
+    let mut deepest: Option<Contact> = None;
+    for (i, pa) in parts_a.iter().enumerate() {
+        for (j, pb) in parts_b.iter().enumerate() {
+            let cache = match i * parts_b.len() + j {
+                0 => &mut state.warm,
+                k => &mut state.more[k - 1],
+            };
+            let found = part_contact(pa, &bodies.poses[a], pb, &bodies.poses[b], cache);
+            if let Some(c) = found.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
+                deepest = Some(c);
+            }
+        }
+    }
+    deepest
+}
+
+/// How two convex parts touch, if they do, the normal from `pa` to `pb`.
+/// Poses were checked when set, so the tests cannot fail.
+fn part_contact(pa: &Part, a: &Pose, pb: &Part, b: &Pose, warm: &mut WarmStart) -> Option<Contact> {
+    let collision = match (pa, pb) {
+        (Part::Hull(x), Part::Hull(y)) => hull_hull(&x.polyhedron, a, &y.polyhedron, b, warm),
+        (Part::Ball(x), Part::Hull(y)) => sphere_hull(x, a, &y.polyhedron, b),
+        (Part::Hull(x), Part::Ball(y)) => sphere_hull(y, b, &x.polyhedron, a).map(flip),
+        (Part::Ball(x), Part::Ball(y)) => sphere_sphere(x, a, y, b),
+    };
+    collision.ok()?.contact().copied()
+}
+
+/// The same collision seen from the other body: the normal reversed.
+fn flip(c: Collision) -> Collision {
+    match c {
+        Collision::Separated { axis, distance } => Collision::Separated { axis: -axis, distance },
+        Collision::Touching(mut contact) => {
+            contact.normal = -contact.normal;
+            Collision::Touching(contact)
+        }
+    }
+}

@@ -1,0 +1,323 @@
+//! One frame of a world, top to bottom, as ../shared/DESIGN.md "One frame"
+//! has it: the world bounds of the bodies that moved, the broadphases'
+//! upkeep and candidate pairs, the layer filter, the sphere test, the OBB
+//! test, and the narrow phase with the contact events. Each stage counts what
+//! it lets through and times itself.
+
+use std::time::Instant;
+
+use bvol_volumes::{Aabb, BodyBounds, WorldBounds, prefetch};
+use rayon::prelude::*;
+
+use crate::bodies::BODIES_AHEAD;
+use crate::broadphase::Broadphase;
+use crate::narrow_phase::narrow_phase;
+use crate::scratch::Scratch;
+use crate::stats::FrameStats;
+use crate::{BodyKind, World};
+
+/// Bodies placed per rayon task: placing one takes a few dozen ns.
+const PLACE_CHUNK: usize = 4096;
+/// Placing scans every slot when at least one in this many moved.
+const DENSE_PLACE: usize = 8;
+/// Bodies placed at once on SIMD lanes.
+const LANES: usize = 4;
+/// Pairs tested per rayon task by the sphere and OBB stages (a few ns a pair).
+const PAIR_CHUNK: usize = 1024;
+/// How many pairs ahead the sphere and OBB stages ask for a pair's bodies'
+/// data: a test takes a few ns, so the loads must be asked for further ahead
+/// than the narrow phase's.
+const FILTER_AHEAD: usize = 16;
+
+impl<B: Broadphase> World<B> {
+    /// Runs one frame: the bodies moved since the last update get their world
+    /// bounds and broadphase leaves updated, candidate pairs come from the
+    /// broadphases,
+    /// and each stage passes on the pairs it cannot rule out. Then
+    /// [`events`](World::events) and [`stats`](World::stats) hold its result.
+    /// The same world and poses give the same events in the same order on
+    /// any number of threads.
+    pub fn update(&mut self) -> &FrameStats {
+        let mut stats = FrameStats::default();
+        let start = Instant::now();
+        let moved = self.place_bounds();
+        stats.moved = moved.len();
+        let t = Instant::now();
+        stats.bounds_time = t - start;
+        // This frame's lists go in last frame's buffers (see `Scratch`).
+        let mut scratch = std::mem::take(&mut self.scratch);
+        self.update_broadphases(&moved, &mut scratch.leaves);
+        // The list's buffer serves the next frame's moved bodies.
+        self.bodies.dirty = moved;
+        self.bodies.dirty.clear();
+        self.candidates(&mut scratch.found);
+        let Scratch { found, near, nearer, starts, sorted, states, runs, .. } = &mut scratch;
+        stats.candidates = found.len();
+        let t2 = Instant::now();
+        stats.broadphase_time = t2 - t;
+        let bodies = &self.bodies;
+        filter(found, |b| prefetch(&bodies.spheres[b]), |a, b| bodies.spheres_overlap(a, b), near);
+        stats.after_spheres = near.len();
+        let t3 = Instant::now();
+        stats.spheres_time = t3 - t2;
+        filter(
+            near,
+            |b| prefetch(&bodies.obbs[b]),
+            |a, b| bodies.obbs[a].overlaps(&bodies.obbs[b]),
+            nearer,
+        );
+        stats.after_obbs = nearer.len();
+        let t4 = Instant::now();
+        stats.obbs_time = t4 - t3;
+        // Sorted for the narrow phase's merge with last frame's states here,
+        // where the fewest pairs are left.
+        sort_by_slot(nearer, bodies.shapes.len(), starts, sorted);
+        let mut events = std::mem::take(&mut self.events);
+        events.clear();
+        events.append(&mut self.orphaned);
+        stats.touching = narrow_phase(bodies, sorted, &mut self.pairs, states, runs, &mut events);
+        self.events = events;
+        self.scratch = scratch;
+        stats.narrow_time = t4.elapsed();
+        self.stats = stats;
+        &self.stats
+    }
+
+    /// Places the world sphere, OBB and leaf box of every live body moved
+    /// since the last update; returns their slots. When many moved, one
+    /// parallel pass over every slot writes them in place, four neighbours
+    /// at a time on SIMD lanes (reading a flag a slot costs less than
+    /// gathering the moved ones by slot); when few did, a loop over those.
+    fn place_bounds(&mut self) -> Vec<u32> {
+        let b = &mut self.bodies;
+        let mut dirty = std::mem::take(&mut b.dirty);
+        if dirty.len() * DENSE_PLACE >= b.shapes.len() {
+            let chunks = (
+                b.spheres.par_chunks_mut(PLACE_CHUNK),
+                b.obbs.par_chunks_mut(PLACE_CHUNK),
+                b.leaves.par_chunks_mut(PLACE_CHUNK),
+                b.is_dirty.par_chunks_mut(PLACE_CHUNK),
+                b.shapes.par_chunks(PLACE_CHUNK),
+                b.poses.par_chunks(PLACE_CHUNK),
+            );
+            // Written out here: the same loop as a function of its own was
+            // measurably slower, inlined or not (docs/performance.md).
+            chunks.into_par_iter().for_each(|(spheres, obbs, leaves, flags, shapes, poses)| {
+                let n = spheres.len();
+                for start in (0..n).step_by(LANES) {
+                    let ahead = start + BODIES_AHEAD;
+                    if ahead < n {
+                        prefetch(&spheres[ahead]);
+                        prefetch(&obbs[ahead]);
+                        prefetch(&leaves[ahead]);
+                        prefetch(&poses[ahead]);
+                    }
+                    let end = (start + LANES).min(n);
+                    let (spheres, obbs) = (&mut spheres[start..end], &mut obbs[start..end]);
+                    let (leaves, flags) = (&mut leaves[start..end], &mut flags[start..end]);
+                    let (shapes, poses) = (&shapes[start..end], &poses[start..end]);
+                    let mut store = |k: usize, w: WorldBounds| {
+                        (spheres[k], obbs[k], leaves[k]) = (w.sphere, w.obb, w.aabb);
+                    };
+                    if let ([true, true, true, true], [Some(s0), Some(s1), Some(s2), Some(s3)]) =
+                        (&*flags, shapes)
+                    {
+                        let shapes = [s0, s1, s2, s3].map(|s| s.bounds());
+                        let placed = BodyBounds::at4(shapes, std::array::from_fn(|k| &poses[k]));
+                        placed.into_iter().enumerate().for_each(|(k, w)| store(k, w));
+                    } else {
+                        for (k, (&moved, shape)) in flags.iter().zip(shapes).enumerate() {
+                            if let (true, Some(shape)) = (moved, shape) {
+                                store(k, shape.bounds().at(&poses[k]));
+                            }
+                        }
+                    }
+                    flags.fill(false);
+                }
+            });
+        } else {
+            for &s in &dirty {
+                let i = s as usize;
+                b.is_dirty[i] = false;
+                if let Some(shape) = &b.shapes[i] {
+                    let w = shape.bounds().at(&b.poses[i]);
+                    (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
+                }
+            }
+        }
+        // A pass over the moved slots, only when one may have been freed.
+        if std::mem::take(&mut b.removed) {
+            dirty.retain(|&s| b.shapes[s as usize].is_some());
+        }
+        dirty
+    }
+
+    /// Moves the moved bodies' leaves and adds the new ones, each
+    /// broadphase in one call for each (the tree picks per-leaf updates or a
+    /// refit by the fraction moved, and takes many new leaves at once, a
+    /// level load, in one batch build).
+    fn update_broadphases(&mut self, placed: &[u32], leaves: &mut [Vec<(u32, Aabb)>; 4]) {
+        let [moving, resting, new_moving, new_resting] = leaves;
+        for list in [&mut *moving, &mut *resting, &mut *new_moving, &mut *new_resting] {
+            list.clear();
+        }
+        // Where many moved, the moving broadphase reads its leaves' boxes from
+        // the slot array, in its own order: the tree then refits in parallel
+        // subtrees, where a list is placed a leaf at a time.
+        let dense = placed.len() * DENSE_SHARE >= self.moving.len();
+        for &slot in placed {
+            let leaf = self.bodies.leaves[slot as usize];
+            let dynamic = self.bodies.kinds[slot as usize] == BodyKind::Dynamic;
+            let (broadphase, moved, new) = if dynamic {
+                (&self.moving, &mut *moving, &mut *new_moving)
+            } else {
+                (&self.resting, &mut *resting, &mut *new_resting)
+            };
+            if !broadphase.contains(slot) {
+                new.push((slot, leaf));
+            } else if !(dynamic && dense) {
+                moved.push((slot, leaf));
+            }
+        }
+        // Every id is live, in its broadphase or new to it, and every box
+        // finite: none of these can fail.
+        if dense {
+            self.moving.update_from(&self.bodies.leaves).ok();
+        } else {
+            self.moving.update_moved(moving).ok();
+        }
+        self.resting.update_moved(resting).ok();
+        self.moving.insert_many(new_moving).ok();
+        self.resting.insert_many(new_resting).ok();
+    }
+
+    /// Pairs of overlapping leaves that the bodies' filters allow, each as
+    /// `(lower slot, higher slot)`, in the broadphases' order, into `pairs`.
+    fn candidates(&self, pairs: &mut Vec<(u32, u32)>) {
+        self.moving.pairs_into(pairs);
+        let within = pairs.len();
+        self.moving.pairs_with(&self.resting, pairs);
+        for (a, b) in &mut pairs[within..] {
+            (*a, *b) = (*a.min(b), *a.max(b));
+        }
+        // Every pair passes while no body filters (each on some layer, and
+        // colliding with all): then the pass over them is skipped.
+        let b = &self.bodies;
+        if b.filtering > 0 {
+            pairs.retain(|&(x, y)| {
+                let (x, y) = (x as usize, y as usize);
+                b.layers[x] & b.masks[y] != 0 && b.layers[y] & b.masks[x] != 0
+            });
+        }
+    }
+}
+
+/// The pairs `(a, b)`, `a < b < slots`, sorted: a counting sort on `a` (slots
+/// are dense: one pass counts, one places; Knuth, TAOCP vol. 3, 5.2), then
+/// each slot's few pairs by `b`: a fraction of a comparison sort's time.
+/// `starts` is scratch; the result goes in `sorted`.
+fn sort_by_slot(
+    pairs: &[(u32, u32)],
+    slots: usize,
+    starts: &mut Vec<u32>,
+    sorted: &mut Vec<(u32, u32)>,
+) {
+    starts.clear();
+    starts.resize(slots + 1, 0);
+    for &(a, _) in pairs {
+        starts[a as usize + 1] += 1;
+    }
+    for i in 1..starts.len() {
+        starts[i] += starts[i - 1];
+    }
+    sorted.clear();
+    sorted.resize(pairs.len(), (0, 0));
+    for &(a, b) in pairs {
+        let at = &mut starts[a as usize];
+        sorted[*at as usize] = (a, b);
+        *at += 1;
+    }
+    // Each slot's place now ends its run. Most runs hold a pair or two: an
+    // insertion sort in line costs less than a library sort called for each.
+    let mut begin = 0;
+    for &end in &starts[..slots] {
+        let run = &mut sorted[begin as usize..end as usize];
+        if run.len() > SHORT_RUN {
+            run.sort_unstable();
+        } else {
+            for i in 1..run.len() {
+                let mut j = i;
+                while j > 0 && run[j - 1].1 > run[j].1 {
+                    run.swap(j - 1, j);
+                    j -= 1;
+                }
+            }
+        }
+        begin = end;
+    }
+}
+
+/// The moving broadphase reads every leaf's box from the slot array when at
+/// least one body in this many of those it holds moved (see
+/// `update_broadphases`).
+const DENSE_SHARE: usize = 2;
+
+/// Runs of [`sort_by_slot`] longer than this take the library's sort.
+const SHORT_RUN: usize = 16;
+
+/// The pairs for which `keep` holds, in order, tested in parallel chunks.
+/// The pairs come in the broadphases' order, their bodies scattered in the
+/// slots: `ahead` asks for the data `keep` will read of both bodies
+/// [`FILTER_AHEAD`] pairs early, since a large world's bounds are past the
+/// caches. Into `out`.
+fn filter(
+    pairs: &[(u32, u32)],
+    ahead: impl Fn(usize) + Sync,
+    keep: impl Fn(usize, usize) -> bool + Sync,
+    out: &mut Vec<(u32, u32)>,
+) {
+    out.clear();
+    out.par_extend(pairs.par_chunks(PAIR_CHUNK).flat_map_iter(|chunk| {
+        let kept = chunk.iter().enumerate().filter(|&(k, &(a, b))| {
+            if let Some(&(first, second)) = chunk.get(k + FILTER_AHEAD) {
+                ahead(first as usize);
+                ahead(second as usize);
+            }
+            keep(a as usize, b as usize)
+        });
+        kept.map(|(_, &pair)| pair)
+    }));
+}
+
+#[cfg(test)]
+mod tests {
+    use proptest::prelude::*;
+
+    use super::sort_by_slot;
+
+    proptest! {
+        /// The counting sort gives the order of a comparison sort, on pairs
+        /// `a < b` of slots below the count, repeats of a first slot included:
+        /// with few slots, runs far longer than `SHORT_RUN`.
+        #[test]
+        fn sort_by_slot_matches_a_comparison_sort(
+            slots in 2u32..300,
+            raw in prop::collection::vec((0u32..300, 0u32..300), 0..2000),
+        ) {
+            // Each pair once, in the generated (arbitrary) order.
+            let mut seen = std::collections::HashSet::new();
+            let pairs: Vec<(u32, u32)> = raw
+                .into_iter()
+                .map(|(a, b)| (a % slots, b % slots))
+                .filter(|(a, b)| a != b)
+                .map(|(a, b)| (a.min(b), a.max(b)))
+                .filter(|&pair| seen.insert(pair))
+                .collect();
+            let mut want = pairs.clone();
+            want.sort_unstable();
+            let (mut starts, mut sorted) = (vec![7; 3], vec![(1, 2); 5]);
+            sort_by_slot(&pairs, slots as usize, &mut starts, &mut sorted);
+            prop_assert_eq!(sorted, want);
+        }
+    }
+}
