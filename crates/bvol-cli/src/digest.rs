@@ -8,7 +8,7 @@ use std::ops::AddAssign;
 /// wrapping, so digests of frames add up to the digest of a trace, in any order.
 ///
 /// ```
-/// use bvol::PairDigest;
+/// use bvol_cli::digest::PairDigest;
 /// let one = PairDigest::of_pairs([(1, 2), (0, 7)]);
 /// let other = PairDigest::of_pairs([(0, 7), (1, 2)]);
 /// assert_eq!(one, other);

@@ -11,7 +11,8 @@ fn bvol(args: &[&str]) -> Output {
 }
 
 fn mesh(name: &str) -> PathBuf {
-    Path::new(env!("CARGO_MANIFEST_DIR")).join("tests/meshes").join(name)
+    // The engine's test meshes, at the workspace root.
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../../tests/meshes").join(name)
 }
 
 /// A scratch file holding `bytes`, unique to this test process.

@@ -6,7 +6,7 @@ use std::fmt;
 use std::io::{self, Read, Write};
 use std::path::Path;
 
-use bvol_volumes::Aabb;
+use bvol::volumes::Aabb;
 use glam::Vec3;
 
 const MAGIC: &[u8; 4] = b"BPHF";
@@ -18,7 +18,7 @@ const BOX_BYTES: usize = 24;
 /// every frame.
 ///
 /// ```
-/// use bvol::BoxTrace;
+/// use bvol_cli::trace::BoxTrace;
 /// use bvol::volumes::Aabb;
 /// use glam::Vec3;
 /// let mut trace = BoxTrace::new(2);

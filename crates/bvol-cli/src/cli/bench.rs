@@ -6,10 +6,11 @@ use std::io::BufWriter;
 use std::path::PathBuf;
 use std::time::Instant;
 
-use bvol::scenes::{Scene, SceneKind};
+use bvol::tree::{PairSet, Tree};
 use bvol::volumes::Aabb;
-use bvol::{BoxTrace, PairDigest, TraceWriter};
-use bvol_tree::{PairSet, Tree};
+use bvol_cli::digest::PairDigest;
+use bvol_cli::scenes::{Scene, SceneKind};
+use bvol_cli::trace::{BoxTrace, TraceWriter};
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 

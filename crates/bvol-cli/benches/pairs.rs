@@ -9,10 +9,10 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use bvol::PairDigest;
-use bvol::scenes::{Scene, SceneKind};
+use bvol::tree::Tree;
 use bvol::volumes::Aabb;
-use bvol_tree::Tree;
+use bvol_cli::digest::PairDigest;
+use bvol_cli::scenes::{Scene, SceneKind};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
 use parry3d::bounding_volume::Aabb as ParryAabb;
 use parry3d::math::Vector;

@@ -1,4 +1,5 @@
-//! The `bvol` command line: fit bounds to a mesh (and, later, benchmarks).
+//! The `bvol` command line: fit bounds to a mesh; benchmark the broadphase
+//! (`bench pairs`) and the whole frame of a world (`bench world`).
 
 mod cli;
 

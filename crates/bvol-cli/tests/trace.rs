@@ -1,9 +1,10 @@
 //! Box traces: round trip through the file layout, every malformed file named,
 //! and the generated scenes' properties.
 
-use bvol::scenes::{Scene, SceneKind};
 use bvol::volumes::Aabb;
-use bvol::{BoxTrace, PairDigest, TraceError, TraceWriter};
+use bvol_cli::digest::PairDigest;
+use bvol_cli::scenes::{Scene, SceneKind};
+use bvol_cli::trace::{BoxTrace, TraceError, TraceWriter};
 use glam::Vec3;
 
 fn sample_trace(n: usize, frames: usize) -> BoxTrace {

@@ -7,10 +7,10 @@ use std::path::PathBuf;
 use std::sync::Arc;
 use std::time::{Duration, Instant};
 
-use bvol::scenes::{Scene, SceneKind};
+use bvol::tree::Tree;
 use bvol::volumes::{Aabb, Pose};
 use bvol::{BodyDesc, BodyId, FitOptions, FrameStats, Shape, World};
-use bvol_tree::Tree;
+use bvol_cli::scenes::{Scene, SceneKind};
 use clap::Args;
 use glam::{Quat, Vec3};
 
@@ -140,9 +140,9 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
     Ok(Measured { totals, poses_ms, tree_ms })
 }
 
-/// The leaf box the world gave a body in its tree.
+/// The box the world gave a body in its broadphase.
 fn leaf(world: &World, id: BodyId) -> Aabb {
-    world.moving_tree().bound(id.index()).expect("every body is dynamic")
+    world.world_aabb(id).expect("every body is live")
 }
 
 /// A fixed pseudo-random unit axis for body `i`.
@@ -164,11 +164,11 @@ fn print(measured: &Measured, args: &WorldArgs) {
     };
     let count = |f: fn(&FrameStats) -> usize| totals.iter().map(f).sum::<usize>() as f64 / k;
     let bounds = ms(|s| s.bounds_time);
-    let refit = count(|s| s.refit);
+    let moved = count(|s| s.moved);
     println!("stage\tpairs_per_frame\tms_per_frame");
     println!("set poses ({} bodies)\t-\t{poses_ms:.3}", args.n);
-    println!("world bounds ({refit:.0} bodies)\t-\t{bounds:.3}");
-    println!("tree candidates\t{:.1}\t{:.3}", count(|s| s.tree_candidates), ms(|s| s.tree_time));
+    println!("world bounds ({moved:.0} bodies)\t-\t{bounds:.3}");
+    println!("tree candidates\t{:.1}\t{:.3}", count(|s| s.candidates), ms(|s| s.broadphase_time));
     println!("after spheres\t{:.1}\t{:.3}", count(|s| s.after_spheres), ms(|s| s.spheres_time));
     println!("after OBBs\t{:.1}\t{:.3}", count(|s| s.after_obbs), ms(|s| s.obbs_time));
     println!("touching\t{:.1}\t{:.3}", count(|s| s.touching), ms(|s| s.narrow_time));
@@ -183,7 +183,7 @@ fn print(measured: &Measured, args: &WorldArgs) {
         totals.len(),
         args.threads,
         total / tree_ms,
-        refit / bounds / 1e3,
+        moved / bounds / 1e3,
         args.n as f64 / (poses_ms + bounds) / 1e3
     );
 }

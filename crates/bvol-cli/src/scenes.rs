@@ -8,7 +8,7 @@
 use std::fmt;
 use std::str::FromStr;
 
-use bvol_volumes::Aabb;
+use bvol::volumes::Aabb;
 use glam::Vec3;
 use rand::rngs::SmallRng;
 use rand::{RngExt, SeedableRng};
@@ -76,7 +76,7 @@ const GRAVITY: f32 = 0.02;
 /// A running scene: call [`Scene::step`] for each frame's boxes.
 ///
 /// ```
-/// use bvol::scenes::{Scene, SceneKind};
+/// use bvol_cli::scenes::{Scene, SceneKind};
 /// let mut a = Scene::new(SceneKind::Clustered, 1000, 7);
 /// let mut b = Scene::new(SceneKind::Clustered, 1000, 7);
 /// for _ in 0..3 {
