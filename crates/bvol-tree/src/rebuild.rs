@@ -1,10 +1,12 @@
-//! Whole-tree construction: batch builds for level loads, and full rebuilds.
+//! Whole-tree construction: batch builds for level loads, full rebuilds,
+//! and the install of a rebuild staged over frames.
 
 use crate::build::Atom;
+use crate::check::{check_bound, check_id};
 use crate::error::TreeError;
 use crate::morton::build_morton;
 use crate::node::{NONE, Node, ROOT, Ref};
-use crate::tree::{check_bound, check_id};
+use crate::tuning::PREFETCH_AHEAD;
 use crate::{Bound, Config, Tree};
 
 impl<B: Bound> Tree<B> {
@@ -124,7 +126,6 @@ impl<B: Bound> Tree<B> {
     /// Replaces every node by a fresh build over `atoms` (all of them leaves),
     /// in preorder from node 0, with no free nodes.
     pub(crate) fn install(&mut self, atoms: &mut Vec<Atom<B>>) {
-        self.staged = None;
         self.free = Ref::NONE;
         self.free_count = 0;
         match atoms.as_slice() {
@@ -145,14 +146,54 @@ impl<B: Bound> Tree<B> {
                 self.relink_all();
             }
         }
-        self.upkeep.after_rebuild(self.sah_cost());
+        self.policy.rebuilt(self.sah_cost());
+        self.preorder = true;
+    }
+
+    /// Installs a staged rebuild's `topology` (each internal node's
+    /// children, in preorder from the root) in place of every node, each
+    /// leaf keeping its bound; a refit must follow, for the internal nodes'.
+    /// The topology holds every leaf (an insert or a removal drops it): as
+    /// many internal nodes as the tree has in use, at most its array.
+    pub(crate) fn install_topology(&mut self, topology: &[[Ref; 2]]) {
+        debug_assert_eq!(topology.len() + 1, self.len);
+        // Each leaf's bound, gathered in node order (a sequential read) and
+        // found again by the place noted in its parent link: the nodes are
+        // then overwritten in place, in preorder, from the topology. Read by
+        // id from the old nodes instead, the bounds would come scattered,
+        // and a fresh node array would fault its pages in.
+        let mut held = Vec::with_capacity(self.len);
+        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
+            for (c, bound) in node.child.into_iter().zip(node.bounds) {
+                if parent != NONE && c.is_leaf() {
+                    self.leaf_parents[c.index() as usize] = held.len() as u32;
+                    held.push(bound);
+                }
+            }
+        }
+        self.preorder_arrays(topology.len());
+        for (x, &child) in topology.iter().enumerate() {
+            for c in topology.get(x + PREFETCH_AHEAD).into_iter().flatten() {
+                if c.is_leaf() {
+                    bvol_volumes::prefetch(&held[self.leaf_parents[c.index() as usize] as usize]);
+                }
+            }
+            let leaf = |c: Ref| match c.is_leaf() {
+                true => held[self.leaf_parents[c.index() as usize] as usize],
+                false => B::default(),
+            };
+            self.nodes[x] = Node { bounds: [leaf(child[0]), leaf(child[1])], child };
+            for c in child {
+                self.set_parent(c, x as u32);
+            }
+        }
     }
 
     /// Makes the arrays those of a tree of `n` internal nodes laid out in
     /// preorder from the root at node 0, none free, as a caller is about to
     /// write them over the first `n` nodes: the rest are dropped, and every
     /// parent link is left for the caller to set but the root's.
-    pub(crate) fn preorder_arrays(&mut self, n: usize) {
+    fn preorder_arrays(&mut self, n: usize) {
         self.nodes.truncate(n);
         self.parents.clear();
         self.parents.resize(n, NONE);
@@ -162,8 +203,8 @@ impl<B: Bound> Tree<B> {
         self.free = Ref::NONE;
         self.free_count = 0;
         self.root = Ref::node(0);
-        self.upkeep.preorder = true;
-        self.upkeep.reshaped = false;
+        self.preorder = true;
+        self.reshaped = false;
     }
 
     /// Resizes the node arrays to `n` fresh nodes, releasing spare capacity.

@@ -1,10 +1,13 @@
 //! The tree: storage, and the per-leaf operations insert, remove and move.
 
+use crate::Bound;
 use crate::changes::Changes;
+use crate::check::{check_bound, check_id};
+use crate::config::Config;
 use crate::error::TreeError;
+use crate::leaves::Leaves;
 use crate::node::{ID_LIMIT, NONE, Node, ROOT, Ref, Slot};
-use crate::update::PREFETCH_AHEAD;
-use crate::{Bound, Config};
+use crate::policy::Policy;
 
 /// A dynamic bounding-volume tree over leaves that carry user ids.
 ///
@@ -69,10 +72,19 @@ pub struct Tree<B: Bound> {
     pub(crate) changes: Changes,
     /// Tuning.
     pub(crate) config: Config,
-    /// Upkeep state: the cost at the last whole build, the layout, scratch.
-    pub(crate) upkeep: crate::upkeep::Upkeep,
-    /// The refit path's rebuild in progress, a step a frame.
-    pub(crate) staged: Option<Box<crate::staged::Staged<B>>>,
+    /// The update policy's state: which path, when to rebuild.
+    pub(crate) policy: Policy<B>,
+    /// Whether the nodes are laid out in preorder from the root at node 0,
+    /// none free (true after a whole build or a relayout, false after any
+    /// other change of shape).
+    pub(crate) preorder: bool,
+    /// Whether the shape changed since the last refit.
+    pub(crate) reshaped: bool,
+    /// Scratch of the refit path: the ids it found moved.
+    pub(crate) moved: Vec<u32>,
+    /// Scratch of the refit path: the ids it found jumped clear of their
+    /// bound.
+    pub(crate) jumped: Vec<u32>,
 }
 
 impl<B: Bound> Default for Tree<B> {
@@ -104,8 +116,11 @@ impl<B: Bound> Tree<B> {
             len: 0,
             changes: Changes::default(),
             config,
-            upkeep: Default::default(),
-            staged: None,
+            policy: Policy::default(),
+            preorder: true,
+            reshaped: false,
+            moved: Vec::new(),
+            jumped: Vec::new(),
         }
     }
 
@@ -131,41 +146,18 @@ impl<B: Bound> Tree<B> {
 
     /// The tight bound of leaf `id`, if it is in the tree.
     pub fn bound(&self, id: u32) -> Option<B> {
-        match *self.leaf_parents.get(id as usize)? {
-            NONE => None,
-            ROOT => Some(self.root_bound),
-            p => {
-                let node = &self.nodes[p as usize];
-                Some(node.bounds[node.side_of(Ref::leaf(id))])
-            }
-        }
+        self.leaves().bound(id)
     }
 
-    /// Asks for the node that holds leaf `id`'s bound, to be read soon:
-    /// reads in an order other than the tree's wait on memory for each.
+    /// The leaves, read-only.
     #[inline]
-    pub(crate) fn prefetch_leaf(&self, id: u32) {
-        if let Some(&p) = self.leaf_parents.get(id as usize)
-            && let Some(node) = self.nodes.get(p as usize)
-        {
-            bvol_volumes::prefetch(node);
-        }
-    }
-
-    /// For a loop reading the bounds of leaves `ids` in turn, at `ids[k]`
-    /// now: asks for the node of the leaf [`PREFETCH_AHEAD`] places on,
-    /// and for the parent link of the one twice as far, which that request
-    /// will read (ids in an order other than the tree's wait on memory for
-    /// both, past the caches).
-    #[inline]
-    pub(crate) fn prefetch_leaf_ahead(&self, ids: &[u32], k: usize) {
-        if let Some(&far) = ids.get(k + 2 * PREFETCH_AHEAD)
-            && let Some(link) = self.leaf_parents.get(far as usize)
-        {
-            bvol_volumes::prefetch(link);
-        }
-        if let Some(&later) = ids.get(k + PREFETCH_AHEAD) {
-            self.prefetch_leaf(later);
+    pub(crate) fn leaves(&self) -> Leaves<'_, B> {
+        Leaves {
+            nodes: &self.nodes,
+            parents: &self.parents,
+            leaf_parents: &self.leaf_parents,
+            root_bound: self.root_bound,
+            len: self.len,
         }
     }
 
@@ -194,7 +186,7 @@ impl<B: Bound> Tree<B> {
         let fat = bound.fattened(self.margin(&bound, 0.0));
         self.insert_leaf(id, bound, &fat);
         self.len += 1;
-        self.staged = None; // its topology lacks the new leaf
+        self.policy.drop_staged(); // its topology lacks the new leaf
         self.changes.mark(id);
         Ok(())
     }
@@ -207,7 +199,7 @@ impl<B: Bound> Tree<B> {
         }
         let bound = self.remove_leaf(id);
         self.len -= 1;
-        self.staged = None; // its topology holds the leaf
+        self.policy.drop_staged(); // its topology holds the leaf
         self.changes.mark(id);
         Ok(bound)
     }
@@ -259,9 +251,7 @@ impl<B: Bound> Tree<B> {
         } else {
             self.remove_leaf(id);
             self.insert_leaf(id, bound, &fat);
-            if let Some(staged) = &mut self.staged {
-                staged.note_jump(id);
-            }
+            self.policy.note_jump(id);
             Move::Reinserted
         }
     }
@@ -489,7 +479,7 @@ impl<B: Bound> Tree<B> {
 
     /// A node from the free list, or a new one; its parent is set by `link`.
     pub(crate) fn alloc_node(&mut self, node: Node<B>) -> u32 {
-        self.upkeep.reshaped();
+        self.mark_reshaped();
         if self.free == Ref::NONE {
             self.nodes.push(node);
             self.parents.push(NONE);
@@ -505,7 +495,7 @@ impl<B: Bound> Tree<B> {
 
     /// Returns node `x` to the free list.
     pub(crate) fn free_node(&mut self, x: u32) {
-        self.upkeep.reshaped();
+        self.mark_reshaped();
         let mut empty = Node::empty();
         empty.child[0] = self.free;
         self.nodes[x as usize] = empty;
@@ -513,6 +503,12 @@ impl<B: Bound> Tree<B> {
         self.enlarged[x as usize] = false;
         self.free = Ref::node(x);
         self.free_count += 1;
+    }
+
+    /// Records a change of the tree's shape (nodes linked differently).
+    pub(crate) fn mark_reshaped(&mut self) {
+        self.preorder = false;
+        self.reshaped = true;
     }
 
     /// Makes the per-id arrays long enough to hold `id`.
@@ -532,8 +528,8 @@ impl<B: Bound> Tree<B> {
             + self.enlarged.capacity()
             + self.leaf_parents.capacity() * 4
             + self.changes.memory_bytes()
-            + self.upkeep.memory_bytes()
-            + self.staged.as_ref().map_or(0, |s| s.memory_bytes())
+            + (self.moved.capacity() + self.jumped.capacity()) * 4
+            + self.policy.memory_bytes()
     }
 }
 
@@ -548,14 +544,4 @@ pub enum Move {
     Enlarged,
     /// It landed clear of its slack: the leaf was reinserted.
     Reinserted,
-}
-
-/// `Ok` when `id` can index the per-id arrays.
-pub(crate) fn check_id(id: u32) -> Result<(), TreeError> {
-    if id < ID_LIMIT { Ok(()) } else { Err(TreeError::IdOutOfRange { id }) }
-}
-
-/// `Ok` when `bound` can go in a tree; else the error naming `id`.
-pub(crate) fn check_bound<B: Bound>(id: u32, bound: &B) -> Result<(), TreeError> {
-    bound.check().map_err(|reason| TreeError::InvalidBound { id, reason })
 }

@@ -6,69 +6,6 @@ use crate::build::{Atom, NoClusters, build};
 use crate::node::{NONE, Node, Ref, Slot};
 use crate::{Bound, Tree};
 
-/// Upkeep state and reusable scratch.
-#[derive(Clone, Debug)]
-pub(crate) struct Upkeep {
-    /// SAH cost right after the last whole-tree build.
-    pub(crate) built_cost: f64,
-    /// Fraction of leaves the last [`Tree::update`] found moved.
-    pub(crate) moved_fraction: f32,
-    /// Whether the nodes are laid out in preorder from the root at node 0,
-    /// none free (true after a whole build or a relayout, false after any
-    /// other change of shape).
-    pub(crate) preorder: bool,
-    /// Whether the shape changed since the last refit.
-    pub(crate) reshaped: bool,
-    /// Scratch of [`Tree::update`]: moved ids.
-    pub(crate) moved: Vec<u32>,
-    /// Scratch of [`Tree::update`]: ids that jumped clear of their bound.
-    pub(crate) jumped: Vec<u32>,
-    /// Whether the last refit found more than one leaf in
-    /// [`MANY_JUMPS`](crate::update::MANY_JUMPS) jumped.
-    pub(crate) mass_motion: bool,
-}
-
-impl Default for Upkeep {
-    fn default() -> Self {
-        Upkeep {
-            built_cost: 0.0,
-            moved_fraction: 0.0,
-            preorder: true,
-            reshaped: false,
-            moved: Vec::new(),
-            jumped: Vec::new(),
-            mass_motion: false,
-        }
-    }
-}
-
-impl Upkeep {
-    /// Records a fresh whole-tree build of SAH cost `cost`.
-    pub(crate) fn after_rebuild(&mut self, cost: f64) {
-        self.built_cost = cost;
-        self.preorder = true;
-    }
-
-    /// Records a change of the tree's shape (nodes linked differently).
-    pub(crate) fn reshaped(&mut self) {
-        self.preorder = false;
-        self.reshaped = true;
-    }
-
-    /// Whether a refit keeps the old bound of the leaves that jumped, to
-    /// reinsert them after: not when the last frame had many jumps, which
-    /// are then expected again and refit in place (reinserted instead, after
-    /// the refit, if they turn out few).
-    pub(crate) fn hold_jumps(&self) -> bool {
-        !self.mass_motion
-    }
-
-    /// Bytes held.
-    pub(crate) fn memory_bytes(&self) -> usize {
-        (self.moved.capacity() + self.jumped.capacity()) * 4
-    }
-}
-
 impl<B: Bound> Tree<B> {
     /// Bounded quality upkeep; call once per frame after [`Tree::set_bound`]
     /// calls ([`Tree::update`] calls it itself). Returns the number of atoms
@@ -176,7 +113,7 @@ impl<B: Bound> Tree<B> {
             // where the old one did for boxes; a sphere merge may not.
             self.enlarge_from(node, bound, false);
         }
-        self.upkeep.reshaped();
+        self.mark_reshaped();
         atoms.len()
     }
 }

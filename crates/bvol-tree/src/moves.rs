@@ -1,0 +1,95 @@
+//! The per-leaf kernels of an update: finding which leaves moved, moving
+//! them one by one, and reinserting those that jumped clear of their bound.
+
+use crate::node::{NONE, Ref};
+use crate::tuning::REMOVE_AHEAD;
+use crate::update::UpdateStats;
+use crate::{Bound, Move, Tree};
+
+impl<B: Bound> Tree<B> {
+    /// The ids `< bounds.len()` whose bound differs from the tree's, in node
+    /// order.
+    pub(crate) fn scan(&self, bounds: &[B]) -> Vec<u32> {
+        let mut moved = Vec::new();
+        if self.root.is_leaf() {
+            let id = self.root.index();
+            if bounds.get(id as usize).is_some_and(|b| *b != self.root_bound) {
+                moved.push(id);
+            }
+            return moved;
+        }
+        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
+            if parent == NONE {
+                continue;
+            }
+            for side in 0..2 {
+                let c = node.child[side];
+                if c.is_leaf()
+                    && bounds.get(c.index() as usize).is_some_and(|b| *b != node.bounds[side])
+                {
+                    moved.push(c.index());
+                }
+            }
+        }
+        moved
+    }
+
+    /// The per-leaf path: each `(id, bound)` of `moved` updated on its own,
+    /// as by [`Tree::set_bound`], then the bounded upkeep.
+    pub(crate) fn move_each(
+        &mut self,
+        moved: impl ExactSizeIterator<Item = (u32, B)>,
+        stats: &mut UpdateStats,
+    ) {
+        stats.moved = moved.len();
+        for (id, bound) in moved {
+            if self.move_leaf(id, bound) == Move::Reinserted {
+                stats.reinserted += 1;
+            }
+            self.changes.mark(id);
+        }
+        stats.rebuilt = self.optimize();
+    }
+
+    /// Gives the leaves that `jumped` the new bounds a refit held back.
+    pub(crate) fn place_jumped(&mut self, jumped: &[(u32, B)]) {
+        for &(id, bound) in jumped {
+            let p = self.leaf_parents[id as usize];
+            let node = &mut self.nodes[p as usize];
+            node.bounds[node.side_of(Ref::leaf(id))] = bound;
+        }
+    }
+
+    /// Reinserts the leaves placed where they no longer are: this frame's
+    /// `jumped`, with their new bounds (the refit kept their old), and the
+    /// `stale` ids of an install, sorted, that are not among them. All are
+    /// taken out before any goes back: inserted while others still stretch
+    /// their ancestors, each would be placed by bounds that are not there,
+    /// and the tree would end far costlier than a fresh build.
+    pub(crate) fn reinsert(&mut self, jumped: &[(u32, B)], stale: &[u32], stats: &mut UpdateStats) {
+        // This frame's jumps, sorted, to tell the stale leaves among them:
+        // only an install has stale leaves.
+        let mut now: Vec<u32> = Vec::new();
+        if !stale.is_empty() {
+            now.extend(jumped.iter().map(|j| j.0));
+            now.sort_unstable();
+        }
+        let ids: Vec<u32> = jumped.iter().map(|j| j.0).chain(stale.iter().copied()).collect();
+        let mut out = jumped.to_vec();
+        for (k, &id) in ids.iter().enumerate() {
+            if let Some(&later) = ids.get(k + REMOVE_AHEAD) {
+                self.leaves().prefetch(later);
+            }
+            // A jump keeps its new bound; a stale leaf keeps the one it has.
+            if k < jumped.len() {
+                self.remove_leaf(id);
+            } else if now.binary_search(&id).is_err() {
+                out.push((id, self.remove_leaf(id)));
+            }
+        }
+        for &(id, bound) in &out {
+            self.insert_leaf(id, bound, &bound);
+        }
+        stats.reinserted += out.len();
+    }
+}

@@ -1,0 +1,311 @@
+//! The whole-tree refit: every internal node set bottom-up to the exact
+//! merge of its children's bounds, in one pass over the nodes (the refit
+//! path of an update, and [`Tree::refit`]), taking the leaves' new bounds
+//! on the way when given them. In parallel subtrees when the nodes are laid
+//! out in preorder, the same result on any number of threads.
+
+use bvol_volumes::prefetch;
+
+use crate::node::{NONE, Node, ROOT, Ref};
+use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD};
+use crate::{Bound, Tree};
+
+impl<B: Bound> Tree<B> {
+    /// Sets leaf bounds from `bounds` (when given), recording in `moved` the
+    /// ids that changed and in `jumped` those whose new bound does not even
+    /// overlap the old one (those keep their old bound, for the caller to
+    /// reinsert), and refits every internal node to the exact merge of its
+    /// children. Returns the SAH cost after the refit.
+    ///
+    /// Runs over the nodes in reverse preorder, children before parents: in
+    /// place and in parallel subtrees when the nodes are laid out in preorder
+    /// (after a whole build), else along a preorder walk.
+    pub(crate) fn refit_pass(
+        &mut self,
+        bounds: Option<&[B]>,
+        moved: &mut Vec<u32>,
+        jumped: &mut Vec<u32>,
+    ) -> f64 {
+        if self.root.is_leaf() {
+            let id = self.root.index();
+            if let Some(&b) = bounds.and_then(|all| all.get(id as usize))
+                && b != self.root_bound
+            {
+                moved.push(id);
+                self.root_bound = b;
+            }
+            return 0.0;
+        }
+        if !self.root.is_node() {
+            return 0.0;
+        }
+        if !self.preorder && !self.reshaped {
+            // Not in preorder, but the shape has not changed since the last
+            // refit: it is settling, and laying it out once pays for itself
+            // in the refits (and pair searches) that follow.
+            self.relayout();
+        }
+        self.reshaped = false;
+        let mut found = Refit { moved, jumped, hold: self.policy.hold_jumps(), inner: 0.0 };
+        if self.preorder {
+            refit_subtree(&mut self.nodes, 0, bounds, &mut found);
+        } else {
+            self.refit_scattered(bounds, &mut found);
+        }
+        let inner = found.inner;
+        self.root_bound = self.nodes[self.root.index() as usize].merged();
+        self.enlarged.fill(false);
+        let root_area = self.root_bound.cost();
+        if root_area > 0.0 { 1.0 + inner / root_area } else { 0.0 }
+    }
+
+    /// Lays the nodes out in preorder from node 0 (children after parents,
+    /// each subtree contiguous), dropping free nodes. In place: the nodes are
+    /// permuted by following cycles, so no second node array is allocated.
+    fn relayout(&mut self) {
+        let n = self.nodes.len();
+        // Preorder positions for the nodes in use, then the free ones.
+        let mut position = vec![NONE; n];
+        let mut next = 0;
+        let mut stack = vec![self.root.index()];
+        while let Some(x) = stack.pop() {
+            position[x as usize] = next;
+            next += 1;
+            for c in self.nodes[x as usize].child.into_iter().rev() {
+                if c.is_node() {
+                    stack.push(c.index());
+                }
+            }
+        }
+        let used = next as usize;
+        for p in position.iter_mut().filter(|p| **p == NONE) {
+            *p = next;
+            next += 1;
+        }
+        for (node, &p) in self.nodes.iter_mut().zip(&position) {
+            if (p as usize) < used {
+                for c in &mut node.child {
+                    if c.is_node() {
+                        *c = Ref::node(position[c.index() as usize]);
+                    }
+                }
+            }
+        }
+        for i in 0..n {
+            // Send the node at `i` where it belongs until the one that
+            // belongs at `i` arrives.
+            while position[i] as usize != i {
+                let j = position[i] as usize;
+                self.nodes.swap(i, j);
+                self.enlarged.swap(i, j);
+                position.swap(i, j);
+            }
+        }
+        self.nodes.truncate(used);
+        self.enlarged.truncate(used);
+        self.parents.clear();
+        self.parents.resize(used, NONE);
+        self.free = Ref::NONE;
+        self.free_count = 0;
+        self.root = Ref::node(0);
+        self.parents[0] = ROOT;
+        for x in 0..used {
+            for side in 0..2 {
+                self.set_parent(self.nodes[x].child[side], x as u32);
+            }
+        }
+        self.preorder = true;
+    }
+
+    /// The refit of a tree whose nodes are not in preorder (after inserts,
+    /// removes or partial rebuilds): in reverse of a preorder walk, one task.
+    /// The layout is left as it is: while the shape keeps changing (leaves
+    /// jumping every frame), moving every node back each frame would cost
+    /// more than it saves.
+    fn refit_scattered(&mut self, bounds: Option<&[B]>, found: &mut Refit) {
+        let mut order = Vec::with_capacity(self.nodes.len() - self.free_count);
+        let mut stack = vec![self.root.index()];
+        while let Some(x) = stack.pop() {
+            order.push(x);
+            // Second child pushed first: the walk follows the memory order of
+            // a mostly preorder layout.
+            for c in self.nodes[x as usize].child.into_iter().rev() {
+                if c.is_node() {
+                    stack.push(c.index());
+                }
+            }
+        }
+        let mut inner = 0.0;
+        for &x in order.iter().rev() {
+            let child = |c: Ref| c.is_node().then(|| self.nodes[c.index() as usize].merged());
+            let [c0, c1] = self.nodes[x as usize].child;
+            let children = [child(c0), child(c1)];
+            // In place: a copy on the stack, written back, made the
+            // refit's speed depend on where the stack fell against the
+            // arrays modulo 4 KiB (its stores then seem to alias the
+            // next node's loads): +0.4 ms a frame on 100 000 leaves in
+            // some builds and not in others.
+            inner += refit_node(&mut self.nodes[x as usize], children, bounds, found);
+        }
+        found.inner += inner;
+    }
+
+    /// Gives the leaves `listed` their new bounds for a refit to follow:
+    /// those that jumped clear of their old bound keep it when `hold`
+    /// (see [`place_leaf`]). Returns the ones that jumped.
+    pub(crate) fn place_listed(&mut self, listed: &[(u32, B)], hold: bool) -> Vec<(u32, B)> {
+        let mut jumped = Vec::new();
+        for (k, &(id, bound)) in listed.iter().enumerate() {
+            // The ids may come in any order, and their parents lie
+            // anywhere: ask for a later one's parent early.
+            if let Some(&(later, _)) = listed.get(k + PREFETCH_AHEAD) {
+                self.leaves().prefetch(later);
+            }
+            let p = self.leaf_parents[id as usize];
+            if p == ROOT {
+                self.root_bound = bound;
+                continue;
+            }
+            let node = &mut self.nodes[p as usize];
+            let old = &mut node.bounds[node.side_of(Ref::leaf(id))];
+            if place_leaf(old, bound, hold) {
+                jumped.push((id, bound));
+            }
+        }
+        jumped
+    }
+}
+
+/// What a refit found: leaves whose bound changed, those that jumped clear
+/// of their old bound (which they keep when `hold`), and the summed area of
+/// the internal nodes' bounds.
+struct Refit<'a> {
+    moved: &'a mut Vec<u32>,
+    jumped: &'a mut Vec<u32>,
+    hold: bool,
+    inner: f64,
+}
+
+/// Refits the subtree laid out in preorder in `nodes` (its root first, named
+/// `base`), children before parents. Large subtrees split into their two
+/// child subtrees, refit on two rayon tasks; what they find is appended in a
+/// fixed order (second child's first), so the result is the same whatever
+/// the number of threads.
+fn refit_subtree<B: Bound>(
+    nodes: &mut [Node<B>],
+    base: usize,
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) {
+    if nodes.len() < PARALLEL_REFIT {
+        return refit_run(nodes, base, bounds, found);
+    }
+    let (head, rest) = nodes.split_at_mut(1);
+    let node = &mut head[0];
+    // In preorder the second child's subtree starts right after the first's.
+    let second = match node.child[1] {
+        c if c.is_node() => c.index() as usize - base - 1,
+        _ => rest.len(),
+    };
+    let (first_nodes, second_nodes) = rest.split_at_mut(second);
+    let part = |nodes: &mut [Node<B>], child: Ref| {
+        let (mut moved, mut jumped) = (Vec::new(), Vec::new());
+        let hold = found.hold;
+        let mut part = Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
+        if child.is_node() {
+            refit_subtree(nodes, child.index() as usize, bounds, &mut part);
+        }
+        let inner = part.inner;
+        (moved, jumped, inner)
+    };
+    let (a, b) =
+        rayon::join(|| part(first_nodes, node.child[0]), || part(second_nodes, node.child[1]));
+    for (moved, jumped, inner) in [b, a] {
+        found.moved.extend_from_slice(&moved);
+        found.jumped.extend_from_slice(&jumped);
+        found.inner += inner;
+    }
+    // A child subtree's root is its run's first node.
+    let children = [first_nodes.first().map(Node::merged), second_nodes.first().map(Node::merged)];
+    found.inner += refit_node(node, children, bounds, found);
+}
+
+/// Refits a preorder run of nodes sequentially, last to first.
+fn refit_run<B: Bound>(
+    nodes: &mut [Node<B>],
+    base: usize,
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) {
+    let mut inner = 0.0;
+    for x in (0..nodes.len()).rev() {
+        // The nodes are read and written backwards; asked for ahead, as
+        // the user's bounds are, the stream does not wait on memory.
+        if let Some(far) = x.checked_sub(NODES_AHEAD) {
+            prefetch(&nodes[far]);
+        }
+        if let Some(all) = bounds
+            && let Some(ahead) = x.checked_sub(PREFETCH_AHEAD)
+        {
+            for c in nodes[ahead].child {
+                if let Some(b) = all.get(c.index() as usize).filter(|_| c.is_leaf()) {
+                    prefetch(b);
+                }
+            }
+        }
+        let (head, tail) = nodes.split_at_mut(x + 1);
+        let node = &mut head[x];
+        let child = |side: usize| {
+            let c = node.child[side];
+            // Preorder: every child comes after its parent.
+            c.is_node().then(|| tail[c.index() as usize - base - x - 1].merged())
+        };
+        let children = [child(0), child(1)];
+        inner += refit_node(node, children, bounds, found);
+    }
+    found.inner += inner;
+}
+
+/// Gives a leaf stored with bound `old` its `new` one, unless it jumped
+/// clear of the old while jumps are held (see [`crate::policy`]):
+/// then it keeps the old for now, to be reinserted after the refit, which so
+/// measures the cost without its stretch. Returns whether it jumped.
+#[inline]
+fn place_leaf<B: Bound>(old: &mut B, new: B, hold: bool) -> bool {
+    let jumped = !new.overlaps(old);
+    if !(jumped && hold) {
+        *old = new;
+    }
+    jumped
+}
+
+/// Sets one node's child bounds: internal children's from their refit
+/// `children`, leaves' from `bounds` (recording moves and jumps). Returns
+/// the internal children's summed area, for the caller to add up in a
+/// register (added to `found` a node at a time, it chained every node's
+/// refit on a store and a load).
+#[inline]
+fn refit_node<B: Bound>(
+    node: &mut Node<B>,
+    children: [Option<B>; 2],
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+) -> f64 {
+    let mut inner = 0.0;
+    for (side, child) in children.into_iter().enumerate() {
+        let c = node.child[side];
+        if let Some(b) = child {
+            inner += b.cost();
+            node.bounds[side] = b;
+        } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
+            let old = &mut node.bounds[side];
+            if b != *old {
+                found.moved.push(c.index());
+                if place_leaf(old, b, found.hold) {
+                    found.jumped.push(c.index());
+                }
+            }
+        }
+    }
+    inner
+}

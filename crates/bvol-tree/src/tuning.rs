@@ -1,0 +1,54 @@
+//! The update's tuning constants, each with the reason for its value: the
+//! policy's thresholds first, then how far ahead the kernels ask for memory
+//! and how finely they split work between threads. The defaults a user can
+//! change are in [`Config`](crate::Config).
+
+/// More than one leaf in this many jumping clear of its old bound is many.
+/// In one frame (mass motion: bodies falling faster than their size, and
+/// their neighbours with them) they are refit in place and left to the
+/// staged rebuilds: reinserting them all, or rebuilding the tree in each
+/// such frame, costs more than the pair search loses to their stretched
+/// ancestors. Over a staged rebuild's frames (a trickle of teleports),
+/// reinserting that many at its install would cost about as much as
+/// rebuilding the tree in one go, so the rebuild then takes fewer frames.
+pub(crate) const MANY_JUMPS: usize = 16;
+
+/// A staged rebuild starts when the SAH cost has drifted this fraction of
+/// [`Config::drift`](crate::Config::drift) above its cost after the last
+/// build: the tree drifts on while the build runs, and its topology places
+/// the leaves where they were when it began, so starting early installs it
+/// about when a rebuild in one go at the full drift would have been made,
+/// and the pair searches cost what they cost with those rebuilds.
+pub(crate) const DRIFT_STAGED: f64 = 0.35;
+
+/// Steps a frame of a rebuild staged among a trickle of teleports: built in
+/// three frames, its install included, it finds a third as many of them
+/// placed where they were as a build taking one step a frame would.
+pub(crate) const TRICKLE_PACE: usize = 3;
+
+/// How many nodes ahead of the one being refit the refit asks for the
+/// user's leaf bounds, and how many leaves ahead a listed update or an
+/// install asks for a leaf's parent node. Leaf ids follow the user's order,
+/// not the tree's, so those reads are scattered: past the caches, waiting
+/// for each in turn would take about half the refit.
+pub(crate) const PREFETCH_AHEAD: usize = 16;
+
+/// How many leaves ahead the reinsertion asks for the parent node of the
+/// leaf it will take out: jumps land anywhere in the tree, and a few
+/// removals' time is enough for the node to arrive.
+pub(crate) const REMOVE_AHEAD: usize = 4;
+
+/// How many nodes ahead the refit asks for the node it will refit: the
+/// nodes are walked backwards, and past the caches (a million leaves) the
+/// refit would otherwise wait on each; within them the request costs
+/// nothing.
+pub(crate) const NODES_AHEAD: usize = 64;
+
+/// Bounds checked by one task of an update's input check: a task a bound
+/// would cost more than the check, and a chunk this long is checked in a
+/// fraction of a frame.
+pub(crate) const CHECK_CHUNK: usize = 16384;
+
+/// Subtrees with at least this many nodes are refit on two rayon tasks;
+/// smaller ones cost less to refit than to hand to another thread.
+pub(crate) const PARALLEL_REFIT: usize = 8192;
