@@ -28,13 +28,12 @@ const LAST_CELL: f32 = ((1 << BITS) - 1) as f32;
 pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(leaves: &mut Vec<Atom<B>>, out: &mut [N]) -> B {
     // Leaves far larger than the typical one stay out of the clusters: a
     // cluster holding one would be as large, and so would every node above
-    // it. The top-level SAH places them on their own. (On 100 000 boxes, 1%
-    // of them 20 times larger, this cut pair searches by a fifth; adding
-    // size classes as split candidates to the SAH made them slower.)
+    // it, and a pair search would visit them all. The top-level SAH places
+    // them on their own.
     let large_above = median_class(leaves).saturating_add(LARGE_CLASSES);
     let is_large = |a: &Atom<B>| a.class > large_above;
     // In place: most scenes have none, and copying every leaf into two new
-    // vectors cost as much as the radix sort (2.5 ms on 100 000 leaves).
+    // vectors would cost as much as the radix sort.
     let mut atoms: Vec<_> = leaves.iter().filter(|a| is_large(a)).copied().collect();
     if !atoms.is_empty() {
         leaves.retain(|a| !is_large(a));
@@ -125,8 +124,8 @@ fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     // The box of the bounds, not of the centres: the grid a staged rebuild
     // takes from the root's bound, so that for boxes both builds make the
     // same tree. (On boxes resting on a floor, the centres' box, far
-    // thinner than the bounds', split them first across their thickness:
-    // SAH cost 55 against 41 for the bounds' box.)
+    // thinner than the bounds', would split them first across their
+    // thickness, into a costlier tree.)
     let (lo, hi) = leaves.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), a| {
         let b = a.bound.aabb();
         (lo.min(b.min), hi.max(b.max))
@@ -167,8 +166,8 @@ impl Grid {
 
 /// Reorders `items` in place so that position `p` holds the item that was
 /// at `from[p].1`, following the permutation's cycles (each item moves once,
-/// with no second array of items: for 100 000 leaves a fresh one cost more
-/// in page faults than the sort). Leaves every `from[p].1` spent.
+/// with no second array of items, whose pages would be faulted in at every
+/// build). Leaves every `from[p].1` spent.
 fn permute<T: Copy>(items: &mut [T], from: &mut [(u32, u32)]) {
     const DONE: u32 = u32::MAX;
     for start in 0..items.len() {
@@ -224,8 +223,8 @@ pub(crate) fn radix_sort(items: &mut Vec<(u32, u32)>) {
 
 /// Top-down LBVH over a sorted range of at least 2 leaves: split where the
 /// highest differing bit of the range's codes flips (Lauterbach et al. 2009).
-/// Within a cluster this costs nothing but the split search, and measured as
-/// good for pair searches as a binned-SAH cluster at half the build time.
+/// Within a cluster this costs nothing but the split search, and makes
+/// subtrees as good for pair searches as binned SAH would, in less time.
 pub(crate) fn lbvh<B: Bound, N: NodeOut<B>>(
     leaves: &[Atom<B>],
     codes: &[u32],

@@ -8,9 +8,10 @@ use crate::{Bound, Tree};
 /// Changed ids per task of the incremental path.
 const CHUNK: usize = 256;
 /// Above this fraction of changed leaves, an update recomputes every pair
-/// (one tree self-search) instead of querying each changed leaf. Measured
-/// on 100 000 moving boxes: at 20% changed the two cost the same, at 10% the
-/// queries take 60% of the full search, at 2% 20%.
+/// (one tree self-search) instead of querying each changed leaf: the
+/// queries' cost grows with the leaves changed, and reaches the full
+/// search's a little above this fraction (chosen by measurement on
+/// `benches/frame.rs`).
 const FULL_FRACTION: f32 = 0.15;
 
 /// The overlapping pairs of one [`Tree`], kept up to date frame to frame,

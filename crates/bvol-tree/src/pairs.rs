@@ -9,15 +9,15 @@
 //! first, a level of independent steps at a time, which the processor
 //! overlaps; and over the nodes from last to first, so that a node's two
 //! subtrees, searched just before it, are still in cache when the search
-//! between them starts (on 100 000 boxes this halved the time).
+//! between them starts, instead of being fetched again from memory.
 //!
 //! The work is cut into a fixed list of independent tasks, fixed by the trees
 //! alone, which rayon runs in parallel; their outputs are concatenated in task
 //! order, so the result is the same `Vec`, in the same order, on any number
 //! of threads. On one thread the same tasks run in the same order on one
 //! walker, which writes straight into the caller's vector: no part a task
-//! and no copies (on the clustered and mixed scenes, two million pairs a
-//! frame, that was a tenth of the search).
+//! and no copies (with millions of pairs a frame, the copies would be a
+//! noticeable share of the search).
 
 use std::cell::RefCell;
 
@@ -35,19 +35,17 @@ const TASKS: usize = 512;
 /// A breadth-first level with more visits than this is split in two tasks.
 const SPLIT: usize = 4096;
 /// How many visits ahead in a level the search asks for the two nodes of a
-/// visit. Within the caches (100 000 boxes) the search does not wait on
-/// memory and this changes nothing; past them (a million boxes) a level's
-/// visits land anywhere in 56 MB of nodes, and asking 32 ahead took the
-/// search from 67 to 61-62 ms a frame (8 ahead: 64).
+/// visit. Within the caches the search does not wait on memory and this
+/// changes nothing; past them (a million boxes) a level's visits land
+/// anywhere in the nodes, and each would wait for its two.
 const LEVEL_AHEAD: usize = 32;
 
 /// A pair of internal nodes to visit, `x` in the first tree and `y` in the
 /// second, and which of their children take part: each a node index (below
 /// 2^28, as ids are, and so node counts) with two selection bits above it,
 /// bit 30 for side 0 and bit 31 for side 1: eight bytes where a separate mask
-/// made twelve, and every visit writes four of them, kept or not. (Packed
-/// into one `u64`, the search was 5% slower: the shifts cost more than the
-/// store they save.)
+/// made twelve, and every visit writes four of them, kept or not. Not packed
+/// into one `u64`: the shifts would cost more than the store they save.
 #[derive(Clone, Copy, Debug, Default)]
 struct Visit {
     x: u32,
@@ -216,9 +214,9 @@ fn ordered(pair: (u32, u32)) -> (u32, u32) {
 }
 
 /// Appends the parts to `out` in order, each pair passed through `f`: a
-/// rayon task a part, each writing its own stretch of `out`. (One thread
-/// copying them after the search took a tenth of the two-thread search of
-/// 2 million pairs.)
+/// rayon task a part, each writing its own stretch of `out`: with millions
+/// of pairs, one thread copying them after the search would add a
+/// noticeable share of its time.
 fn concat(
     parts: Vec<Vec<(u32, u32)>>,
     out: &mut Vec<(u32, u32)>,
@@ -273,11 +271,10 @@ impl<T> Default for Buf<T> {
 thread_local! {
     /// A walker per thread kept from search to search: its frontiers and
     /// output grow to a search's size once, instead of being allocated
-    /// afresh, their pages faulted in, at every search (the clustered
-    /// scene's 2 million pairs a frame spent about a tenth of their time
-    /// there). Only one: the walkers that nested splits make while it is out
-    /// are dropped, so the memory kept is one search's (about 1-3 MB on the
-    /// 100 000-box scenes).
+    /// afresh, their pages faulted in, at every search (with millions of
+    /// pairs a frame, a noticeable share of the search). Only one: the
+    /// walkers that nested splits make while it is out are dropped, so the
+    /// memory kept is one search's.
     static SPARE: RefCell<Option<Walker>> = const { RefCell::new(None) };
 }
 
@@ -442,8 +439,7 @@ impl Walker {
         for x in nodes.rev() {
             // The next chunk's nodes, met in the same order: read while this
             // chunk's descent works in the cache, they are there when its
-            // turn comes (a million boxes: 61-62 -> 58-59 ms a frame; the
-            // bare pass over 56 MB of nodes had taken about 7).
+            // turn comes (past the caches, each node would wait on memory).
             if let Some(next) = x.checked_sub(CHUNK) {
                 bvol_volumes::prefetch(&s.a[next]);
             }

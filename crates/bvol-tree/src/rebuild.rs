@@ -43,11 +43,10 @@ impl<B: Bound> Tree<B> {
     /// Adds many leaves at once: `leaves[k]` is `(id, bound)`. When they are
     /// at least as many as the leaves already in the tree, the whole tree is
     /// built again over old and new in one go, as by [`Tree::build`]: a level
-    /// load costs one batch build instead of one insertion each (a world's
-    /// first update of 100 000 cubes: 15-17 ms, against 141 ms one by one;
-    /// and the batch-built tree is better: the next update, nothing having
-    /// moved, took 0.3-0.5 ms against 12.5). Fewer are inserted one by one,
-    /// as by [`Tree::insert`].
+    /// load costs one batch build instead of one insertion each, a fraction
+    /// of their time, and the batch-built tree is better than one grown by
+    /// insertions, so the updates that follow cost less too. Fewer are
+    /// inserted one by one, as by [`Tree::insert`].
     ///
     /// Every id and bound is checked first: on error (a bad bound, an id out
     /// of range, already in the tree or given twice) nothing has changed.

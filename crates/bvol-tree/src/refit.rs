@@ -140,11 +140,10 @@ impl<B: Bound> Tree<B> {
             let child = |c: Ref| c.is_node().then(|| self.nodes[c.index() as usize].merged());
             let [c0, c1] = self.nodes[x as usize].child;
             let children = [child(c0), child(c1)];
-            // In place: a copy on the stack, written back, made the
-            // refit's speed depend on where the stack fell against the
-            // arrays modulo 4 KiB (its stores then seem to alias the
-            // next node's loads): +0.4 ms a frame on 100 000 leaves in
-            // some builds and not in others.
+            // In place: a copy on the stack, written back, would make
+            // the refit's speed depend on where the stack falls against
+            // the arrays modulo 4 KiB (its stores can alias the next
+            // node's loads), and so differ from build to build.
             inner += refit_node(&mut self.nodes[x as usize], children, bounds, found);
         }
         found.inner += inner;

@@ -335,8 +335,8 @@ fn a_staged_rebuild_of_many_leaves_does_not_depend_on_the_thread_count() {
 /// each frame) are refit in place and left to staged rebuilds, never
 /// rebuilt in one go, every frame exact; and once they rest on the floor, a
 /// last staged rebuild leaves the tree as good as one built afresh over the
-/// settled boxes. (Kept as installed, the last build begun while they still
-/// fell left the cost 10% higher here.)
+/// settled boxes (kept as installed, the last build begun while they still
+/// fell would leave it costlier).
 #[test]
 fn falling_boxes_are_refit_in_place_and_settle_into_a_fresh_tree() {
     // A frame of mass motion: more than one box in 16 jumps.
