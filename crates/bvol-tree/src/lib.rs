@@ -46,6 +46,8 @@
 //! # Ok::<(), bvol_tree::TreeError>(())
 //! ```
 
+#![warn(missing_docs)]
+
 mod bound;
 mod build;
 mod changes;
