@@ -17,9 +17,9 @@
 //!   expects the same and does not hold them.
 //! - **Staged rebuild.** When the refit finds the SAH cost drifted
 //!   ([`Config::drift`], from [`DRIFT_STAGED`] of it on), the tree is
-//!   rebuilt a step a frame ([`crate::staged`]) and the topology installed
-//!   by the refit [`STAGED_FRAMES`] frames after it began: no frame pays for
-//!   a whole rebuild. The topology places the leaves where they were a few
+//!   rebuilt a step a frame ([`crate::staged`]), and the topology is
+//!   installed by the refit of the last of its [`STAGED_FRAMES`] frames: no
+//!   frame pays for a whole rebuild. The topology places the leaves where they were a few
 //!   frames before: those that jumped meanwhile are noted as stale, left out
 //!   of their cluster's bound, and reinserted once it is installed.
 //! - **Trickle.** Where jumps come in a steady trickle, so many that a build
@@ -44,7 +44,7 @@ use crate::staged::{STAGED_FRAMES, Staged};
 use crate::tuning::{DRIFT_STAGED, MANY_JUMPS, TRICKLE_PACE};
 
 /// The update policy's state (see the module docs).
-#[derive(Clone, Debug)]
+#[derive(Clone, Debug, Default)]
 pub(crate) struct Policy<B: Bound> {
     /// SAH cost right after the last whole build: what the drift is
     /// measured from.
@@ -100,12 +100,6 @@ pub(crate) enum Next {
     /// The tree's SAH cost as it is now is the new baseline
     /// ([`Policy::rebase`]).
     Rebase,
-}
-
-impl<B: Bound> Default for Policy<B> {
-    fn default() -> Self {
-        Policy { built_cost: 0.0, moved_fraction: 0.0, mass_motion: false, staged: None }
-    }
 }
 
 impl<B: Bound> Policy<B> {
