@@ -13,6 +13,11 @@
 //!   they can have come together), else at the cost of two support points.
 //! - [`obb_obb`]: the same test and contact on two boxes, without allocating.
 //! - [`sphere_hull`], [`sphere_obb`], [`sphere_sphere`]: closest points.
+//! - [`capsule_capsule`], [`capsule_sphere`], [`capsule_hull`]: exact
+//!   [`Capsule`]s (a segment swept by a ball), by the closest points of their
+//!   core segment (Ericson, Real-Time Collision Detection 5.1.9) and, against
+//!   a hull, the separating-axis test of the core; two contact points where a
+//!   capsule lies along another or on a face.
 //!
 //! Shapes are in their body's local space; a [`Pose`] places each in the
 //! world. The tests compute in the first body's space in f64, so the verdict
@@ -55,6 +60,10 @@ mod arc;
 mod box_numbering;
 mod box_sat;
 mod boxes;
+mod capsule;
+mod capsule_capsule;
+mod capsule_hull;
+mod capsule_sphere;
 mod cluster;
 mod collision;
 mod convex;
@@ -68,12 +77,17 @@ mod manifold;
 mod plane;
 mod polyhedron;
 mod sat;
+mod segment;
 mod sphere;
 mod topology;
 mod warm;
 
 pub use boxes::obb_obb;
 pub use bvol_volumes::Pose;
+pub use capsule::Capsule;
+pub use capsule_capsule::capsule_capsule;
+pub use capsule_hull::capsule_hull;
+pub use capsule_sphere::capsule_sphere;
 pub use collision::{Collision, Contact, ContactPoint};
 pub use error::{Body, NarrowError, ShapeError};
 pub use hull::hull_hull;
