@@ -10,7 +10,7 @@ import re
 import sys
 from pathlib import Path
 
-ROOTS = ["src", "crates/bvol-volumes/src", "crates/bvol-tree/src", "crates/bvol-narrow/src"]
+ROOTS = ["src", "crates/bvol-volumes/src", "crates/bvol-tree/src", "crates/bvol-narrow/src", "crates/bvol-cli/src"]
 
 
 def module_of(src: Path, path: Path) -> str:
