@@ -115,13 +115,12 @@ impl Broadphase for BruteForce {
     }
 
     fn update_from(&mut self, boxes: &[Aabb]) -> Result<(), TreeError> {
-        // By id, so that the first bad box named is the tree's: the lowest id.
-        let mut held = self.ids.clone();
+        // By id, so that the first bad box named is the tree's: the lowest.
+        let mut held: Vec<u32> =
+            self.ids.iter().copied().filter(|&id| (id as usize) < boxes.len()).collect();
         held.sort_unstable();
-        let given =
-            |id: u32| boxes.get(id as usize).map(|&b| (id, b)).ok_or(TreeError::UnknownId { id });
-        let moved: Result<Vec<(u32, Aabb)>, TreeError> = held.into_iter().map(given).collect();
-        self.update_moved(&moved?)
+        let moved: Vec<(u32, Aabb)> = held.into_iter().map(|id| (id, boxes[id as usize])).collect();
+        self.update_moved(&moved)
     }
 
     fn pairs_into(&self, out: &mut Vec<(u32, u32)>) {

@@ -74,7 +74,9 @@ pub trait Broadphase: Default + std::fmt::Debug + Send + Sync {
 
     /// Gives every leaf its box `boxes[id]`: the update when most leaves
     /// moved, read from the world's array of every body's box. Entries for
-    /// ids not in the set are not read.
+    /// ids not in the set are not read; leaves at or past the slice's end
+    /// keep their boxes, as [`Tree::update_from`](bvol_tree::Tree::update_from)
+    /// has it.
     fn update_from(&mut self, boxes: &[Aabb]) -> Result<(), Self::Error>;
 
     /// Every pair of leaves whose boxes overlap, each once as `(a, b)` with
