@@ -61,7 +61,7 @@ pub fn run(args: WorldArgs) -> Result<(), String> {
 }
 
 /// The shape scaled about its sphere's centre so that the sphere's radius is
-/// [`BODY_RADIUS`].
+/// [`BODY_RADIUS`]. A shape read from an OBJ file has hull parts alone.
 fn scaled(shape: &Shape) -> Result<Shape, String> {
     let s = shape.sphere();
     let k = BODY_RADIUS / s.radius;
@@ -74,7 +74,7 @@ fn scaled(shape: &Shape) -> Result<Shape, String> {
                 positions: h.polyhedron.vertices().iter().map(|&v| (v - s.center) * k).collect(),
                 triangles: Vec::new(),
             }),
-            bvol::Part::Ball(_) => None,
+            _ => None,
         })
         .collect();
     Shape::from_meshes(&meshes, FitOptions::default()).map_err(|e| e.to_string())
