@@ -10,7 +10,7 @@ use clap::{Parser, Subcommand};
 
 /// bvol: bounding volumes, broadphase and narrow phase for rigid bodies.
 #[derive(Parser, Debug)]
-#[command(name = "bvol", version, about)]
+#[command(name = "bvol", version)]
 pub struct Args {
     #[command(subcommand)]
     command: Command,
