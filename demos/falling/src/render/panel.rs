@@ -1,8 +1,8 @@
 //! The controls panel drawn now and then, copied into every frame.
 //!
-//! A software rasteriser pays about 30 ns per pixel for egui's textured
-//! shader: a 300 x 720 panel costs a third of a frame at 1 000 bodies on
-//! lavapipe. Its figures only need to change a few times a second to be
+//! A software rasteriser pays for every pixel of egui's textured shader, and
+//! on lavapipe a panel drawn anew every frame takes a large share of it. Its
+//! figures only need to change a few times a second to be
 //! readable, so its pixels are drawn into a cache when the user acts or
 //! every [`PanelCache::REFRESH`], and copied into each frame, which is a plain
 //! memory copy. Whatever egui draws outside the panel (pop-ups, the
