@@ -1,11 +1,14 @@
 //! Capsules: a segment swept by a ball, tested exactly (where a hull of
 //! points on its caps would only approximate them).
 
-use glam::DVec3;
+use std::f64::consts::PI;
+
+use bvol_volumes::{Aabb, Ray, Sphere};
+use glam::{DMat3, DVec2, DVec3, Vec3};
 
 use crate::isometry::DIsometry3;
 use crate::segment::Segment;
-use crate::{Body, NarrowError};
+use crate::{Body, MassProperties, NarrowError, PartKind};
 
 /// Two cores (or a core and a face) this close to parallel, as the sine of
 /// their angle, rest along a line: their contact takes a point at each end
@@ -80,5 +83,114 @@ impl Capsule {
     pub(crate) fn core(&self, to: &DIsometry3) -> Segment {
         let half = DVec3::new(0.0, self.half_height.into(), 0.0);
         Segment::new(to.apply(-half), to.apply(half))
+    }
+
+    /// The balls about its core's ends, bottom then top: the capsule is their
+    /// hull.
+    fn end_balls(&self) -> [Sphere; 2] {
+        [-1.0, 1.0].map(|s| Sphere::new(Vec3::Y * (s * self.half_height), self.radius))
+    }
+
+    /// Where a ray from `o` along `d` enters the capsule's side, between the
+    /// planes of its core's ends: the nearer root of the ray against the
+    /// cylinder of its radius about the core's line (Ericson, Real-Time
+    /// Collision Detection 5.3.7, in the stable form of `Sphere::ray_entry`),
+    /// if the ray starts outside that cylinder and the root lies between the
+    /// planes. A ray that starts within the cylinder, or meets it beyond the
+    /// planes, can only enter the capsule through an end ball: where it
+    /// crosses a plane within the radius it is inside that ball.
+    fn side_entry(&self, o: DVec3, d: DVec3) -> Option<f64> {
+        let (f, d2) = (DVec2::new(o.x, o.z), DVec2::new(d.x, d.z));
+        let (a, r) = (d2.length_squared(), f64::from(self.radius));
+        let c = f.length_squared() - r * r;
+        let b = -f.dot(d2);
+        if a == 0.0 || c <= 0.0 || b <= 0.0 {
+            return None;
+        }
+        let disc = r * r - (f + d2 * (b / a)).length_squared();
+        if disc < 0.0 {
+            return None;
+        }
+        let t = c / (b + (a * disc).sqrt());
+        ((o.y + t * d.y).abs() <= f64::from(self.half_height)).then_some(t)
+    }
+}
+
+impl PartKind for Capsule {
+    /// The box of its two end balls.
+    fn local_bounds(&self) -> Aabb {
+        let [low, high] = self.end_balls();
+        low.aabb().merge(&high.aabb())
+    }
+
+    /// The end of the core on `direction`'s side (the top on a tie) moved by
+    /// the radius along `direction`, in f64; that end when `direction` has
+    /// no length.
+    fn support(&self, direction: Vec3) -> Vec3 {
+        let d = direction.as_dvec3();
+        let h = f64::from(self.half_height);
+        let end = DVec3::new(0.0, if d.y < 0.0 { -h } else { h }, 0.0);
+        let unit = d.try_normalize().unwrap_or(DVec3::ZERO);
+        (end + unit * f64::from(self.radius)).as_vec3()
+    }
+
+    /// 0 when the ray starts within the radius of the core; else the nearest
+    /// of where it enters the side and the two end balls, the capsule being
+    /// their union.
+    fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
+        let valid = ray.origin.is_finite() && ray.direction.is_finite();
+        if !(valid && ray.direction != Vec3::ZERO && max_t >= 0.0) {
+            return None;
+        }
+        let (o, d) = (ray.origin.as_dvec3(), ray.direction.as_dvec3());
+        let h = f64::from(self.half_height);
+        let core = DVec3::new(0.0, o.y.clamp(-h, h), 0.0);
+        if o.distance_squared(core) <= f64::from(self.radius).powi(2) {
+            return Some(0.0);
+        }
+        let side = self.side_entry(o, d).filter(|&t| t <= f64::from(max_t)).map(|t| t as f32);
+        let [low, high] = self.end_balls();
+        [side, low.ray_entry(ray, max_t), high.ray_entry(ray, max_t)]
+            .into_iter()
+            .flatten()
+            .min_by(f32::total_cmp)
+    }
+
+    /// The corners of its box, which is the hull of its end balls' cubes:
+    /// their hull holds the capsule (points on the capsule itself would not
+    /// do, their hull lying inside it). Round parts are thus bounded as
+    /// loosely as their box, unless alone ([`enclosing_sphere`]).
+    ///
+    /// [`enclosing_sphere`]: PartKind::enclosing_sphere
+    fn fit_points(&self) -> Vec<Vec3> {
+        let Aabb { min, max } = self.local_bounds();
+        (0..8)
+            .map(|i| Vec3::select(glam::BVec3::new(i & 1 != 0, i & 2 != 0, i & 4 != 0), max, min))
+            .collect()
+    }
+
+    /// The sphere about the core's middle reaching the ends' caps: the merge
+    /// of the end balls.
+    fn enclosing_sphere(&self) -> Option<Sphere> {
+        let [low, high] = self.end_balls();
+        Some(low.merge(&high))
+    }
+
+    /// A cylinder of the core's length and two half balls, each of these
+    /// with its centroid `3r/8` beyond the core's end and its own inertia
+    /// across, about the flat face's centre, that of a ball of its mass:
+    /// about the core's axis `m_c r²/2 + m_b 2r²/5`, across it
+    /// `m_c (r²/4 + h²/3) + m_b (2r²/5 + h² + 3hr/4)`, with `m_c = 2π r² h`
+    /// and `m_b = 4/3 π r³` (the hemispheres moved from their centroids by
+    /// the parallel axis theorem: Opsenica, "Capsule Inertia Tensor",
+    /// GameDev.net 2014, as Jolt's `CapsuleShape` uses).
+    fn mass_properties(&self) -> MassProperties {
+        let (r, h) = (f64::from(self.radius), f64::from(self.half_height));
+        let (cylinder, balls) = (2.0 * PI * r * r * h, 4.0 / 3.0 * PI * r.powi(3));
+        let along = cylinder * r * r / 2.0 + balls * 0.4 * r * r;
+        let across =
+            cylinder * (r * r / 4.0 + h * h / 3.0) + balls * (0.4 * r * r + h * h + 0.75 * h * r);
+        let inertia = DMat3::from_diagonal(DVec3::new(across, along, across));
+        MassProperties::from_f64(cylinder + balls, DVec3::ZERO, inertia)
     }
 }

@@ -82,6 +82,28 @@ impl Collision {
         Collision::Touching(contact)
     }
 
+    /// The same answer seen from B: the axis or the normal reversed, all
+    /// else kept (the contact points are where they were).
+    ///
+    /// ```
+    /// use bvol_narrow::Collision;
+    /// use glam::Vec3;
+    /// let apart = Collision::Separated { axis: Vec3::X, distance: 0.5 };
+    /// assert_eq!(apart.flipped(), Collision::Separated { axis: -Vec3::X, distance: 0.5 });
+    /// assert_eq!(apart.flipped().flipped(), apart);
+    /// ```
+    pub fn flipped(self) -> Collision {
+        match self {
+            Collision::Separated { axis, distance } => {
+                Collision::Separated { axis: -axis, distance }
+            }
+            Collision::Touching(mut contact) => {
+                contact.normal = -contact.normal;
+                Collision::Touching(contact)
+            }
+        }
+    }
+
     /// Whether the bodies overlap or touch.
     pub fn is_touching(&self) -> bool {
         matches!(self, Collision::Touching(_))

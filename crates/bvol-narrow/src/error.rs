@@ -51,6 +51,16 @@ pub enum Body {
     B,
 }
 
+impl Body {
+    /// The other one.
+    pub(crate) fn other(self) -> Body {
+        match self {
+            Body::A => Body::B,
+            Body::B => Body::A,
+        }
+    }
+}
+
 impl fmt::Display for Body {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(match self {
@@ -75,6 +85,20 @@ pub enum NarrowError {
         /// The body whose shape is bad.
         body: Body,
     },
+}
+
+impl NarrowError {
+    /// The same error for the call with A and B swapped.
+    pub(crate) fn swapped(self) -> NarrowError {
+        match self {
+            NarrowError::NonFinitePose { body } => {
+                NarrowError::NonFinitePose { body: body.other() }
+            }
+            NarrowError::NonFiniteShape { body } => {
+                NarrowError::NonFiniteShape { body: body.other() }
+            }
+        }
+    }
 }
 
 impl fmt::Display for NarrowError {

@@ -19,6 +19,18 @@
 //!   a hull, the separating-axis test of the core; two contact points where a
 //!   capsule lies along another or on a face.
 //!
+//! A body's convex [`Part`]s come in kinds: a hull ([`HullPart`]), a ball
+//! ([`Sphere`](bvol_volumes::Sphere)) and a capsule ([`Capsule`]). Each kind
+//! knows, in its own file, what a world asks of it whatever it meets
+//! ([`PartKind`]: its bounds, support points, ray entry, the points its
+//! body's bounds are fitted to, and its [`MassProperties`]). The pair tests
+//! belong to pairs of kinds, one file each (`hull_hull.rs`, `sphere_hull.rs`,
+//! `capsule_hull.rs`, ...), and [`collide_parts`] picks the one for two parts
+//! from a table keyed by their kinds, turning a mirrored pair's answer round.
+//! Adding a kind touches its own file (its type and its [`PartKind`]), one
+//! file per kind it meets, the table's entries, and the variant with its
+//! arms in `part.rs`; nothing else in the engine.
+//!
 //! Shapes are in their body's local space; a [`Pose`] places each in the
 //! world. The tests compute in the first body's space in f64, so the verdict
 //! near touching is exact up to f64 rounding of the f32 input. Normals point
@@ -57,9 +69,9 @@
 #![warn(missing_docs)]
 
 mod arc;
+mod ball;
 mod box_numbering;
 mod box_sat;
-mod boxes;
 mod capsule;
 mod capsule_capsule;
 mod capsule_hull;
@@ -70,19 +82,26 @@ mod convex;
 mod cuboid;
 mod error;
 mod grid;
-mod hull;
+mod hull_hull;
+mod hull_part;
 mod isometry;
 mod lanes;
 mod manifold;
+mod mass;
+mod obb_obb;
+mod pair_table;
+mod part;
+mod part_kind;
 mod plane;
 mod polyhedron;
 mod sat;
 mod segment;
-mod sphere;
+mod sphere_hull;
+mod sphere_obb;
+mod sphere_sphere;
 mod topology;
 mod warm;
 
-pub use boxes::obb_obb;
 pub use bvol_volumes::Pose;
 pub use capsule::Capsule;
 pub use capsule_capsule::capsule_capsule;
@@ -90,7 +109,15 @@ pub use capsule_hull::capsule_hull;
 pub use capsule_sphere::capsule_sphere;
 pub use collision::{Collision, Contact, ContactPoint};
 pub use error::{Body, NarrowError, ShapeError};
-pub use hull::hull_hull;
+pub use hull_hull::hull_hull;
+pub use hull_part::HullPart;
+pub use mass::MassProperties;
+pub use obb_obb::obb_obb;
+pub use pair_table::collide_parts;
+pub use part::Part;
+pub use part_kind::PartKind;
 pub use polyhedron::Polyhedron;
-pub use sphere::{sphere_hull, sphere_obb, sphere_sphere};
+pub use sphere_hull::sphere_hull;
+pub use sphere_obb::sphere_obb;
+pub use sphere_sphere::sphere_sphere;
 pub use warm::WarmStart;

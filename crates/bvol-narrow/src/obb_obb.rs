@@ -3,7 +3,7 @@
 use bvol_volumes::Obb;
 
 use crate::cuboid::Cuboid;
-use crate::hull::collide;
+use crate::hull_hull::collide;
 use crate::isometry::DIsometry3;
 use crate::{Body, Collision, NarrowError, Pose, WarmStart};
 

@@ -1,18 +1,18 @@
-//! Spheres against hulls, boxes and spheres: the closest point of the other
-//! shape to the sphere's centre decides (Ericson, Real-Time Collision
-//! Detection 5.1.2 and 5.1.4).
+//! A sphere against a convex polyhedron: the closest point of the hull to
+//! the sphere's centre decides (Ericson, Real-Time Collision Detection
+//! 5.1.2); the answer from that point, which a sphere against a box shares.
 
-use bvol_volumes::{Obb, Sphere};
+use bvol_volumes::Sphere;
 use glam::DVec3;
 
-use crate::boxes::check_obb;
+use crate::ball::check_sphere;
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
 use crate::manifold::{Manifold, rim};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
 /// Where a sphere's centre is with respect to a convex shape, in its space.
-enum Nearest {
+pub(crate) enum Nearest {
     /// Outside: the shape's closest point to it, and the outward normal of a
     /// face it is outside of, for when the two are too close for a direction.
     Outside { point: DVec3, fallback: DVec3 },
@@ -57,96 +57,9 @@ pub fn sphere_hull(
     Ok(sphere_contact(centre, a.radius.into(), nearest_on_convex(b, centre), &iso_b))
 }
 
-/// Whether sphere `a` touches box `b`, and how: the closest point of the box
-/// is the centre clamped to it in the box's frame (Ericson 5.1.4); a centre
-/// inside goes out through the nearest face. The normal points from the
-/// sphere to the box.
-///
-/// Errors as for [`sphere_hull`], and a box with a non-finite field or a
-/// negative half extent is [`NarrowError::NonFiniteShape`].
-///
-/// ```
-/// use bvol_narrow::{Collision, Pose, sphere_obb};
-/// use bvol_volumes::{Obb, Sphere};
-/// use glam::{Mat3, Quat, Vec3};
-/// let b = Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ONE };
-/// let ball = Sphere::new(Vec3::ZERO, 0.5);
-/// let beside = Pose::new(Vec3::new(2.0, 0.0, 0.0), Quat::IDENTITY);
-/// let hit = sphere_obb(&ball, &beside, &b, &Pose::IDENTITY)?;
-/// assert_eq!(hit, Collision::Separated { axis: -Vec3::X, distance: 0.5 });
-/// # Ok::<(), bvol_narrow::NarrowError>(())
-/// ```
-pub fn sphere_obb(
-    a: &Sphere,
-    pose_a: &Pose,
-    b: &Obb,
-    pose_b: &Pose,
-) -> Result<Collision, NarrowError> {
-    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
-    check_sphere(a, Body::A)?;
-    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?.with_box(b.center, b.axes);
-    check_obb(b, Body::B)?;
-    let centre = iso_b.relative(&iso_a).apply(a.center.as_dvec3());
-    let nearest = nearest_on_box(centre, b.half_extents.as_dvec3());
-    Ok(sphere_contact(centre, a.radius.into(), nearest, &iso_b))
-}
-
-/// Whether two spheres touch, and how: along the line of their centres, from
-/// A's to B's. Concentric spheres have no such line; they touch along A's
-/// local up axis (`pose_a.rotation * Vec3::Y`), a fixed choice that turns
-/// with A.
-///
-/// Errors as for [`sphere_hull`], for either sphere.
-///
-/// ```
-/// use bvol_narrow::{Pose, sphere_sphere};
-/// use bvol_volumes::Sphere;
-/// use glam::{Quat, Vec3};
-/// let s = Sphere::new(Vec3::ZERO, 1.0);
-/// let near = Pose::new(Vec3::new(1.5, 0.0, 0.0), Quat::IDENTITY);
-/// let contact = *sphere_sphere(&s, &Pose::IDENTITY, &s, &near)?.contact().unwrap();
-/// assert_eq!((contact.normal, contact.depth), (Vec3::X, 0.5));
-/// assert_eq!(contact.points()[0].position, Vec3::new(0.75, 0.0, 0.0));
-/// # Ok::<(), bvol_narrow::NarrowError>(())
-/// ```
-pub fn sphere_sphere(
-    a: &Sphere,
-    pose_a: &Pose,
-    b: &Sphere,
-    pose_b: &Pose,
-) -> Result<Collision, NarrowError> {
-    let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
-    check_sphere(a, Body::A)?;
-    let iso_b = DIsometry3::of_pose(pose_b, Body::B)?;
-    check_sphere(b, Body::B)?;
-    let ca = iso_a.apply(a.center.as_dvec3());
-    let cb = iso_b.apply(b.center.as_dvec3());
-    let (ra, rb) = (f64::from(a.radius), f64::from(b.radius));
-    let offset = cb - ca;
-    let distance = offset.length();
-    let normal = offset.try_normalize().unwrap_or_else(|| iso_a.rotate(DVec3::Y));
-    let gap = distance - ra - rb;
-    if gap > 0.0 {
-        return Ok(Collision::separated(normal, gap));
-    }
-    // Midway between A's surface point ca + ra n and B's cb - rb n.
-    let mut manifold = Manifold::default();
-    manifold.push((ca + normal * ra + cb - normal * rb) * 0.5, -gap);
-    Ok(Collision::touching(normal, -gap, &manifold, &DIsometry3::IDENTITY))
-}
-
-/// Whether a sphere's fields are finite and its radius not negative.
-fn check_sphere(sphere: &Sphere, body: Body) -> Result<(), NarrowError> {
-    if sphere.center.is_finite() && sphere.radius.is_finite() && sphere.radius >= 0.0 {
-        Ok(())
-    } else {
-        Err(NarrowError::NonFiniteShape { body })
-    }
-}
-
 /// The answer for a sphere of `radius` about `centre`, both in the other
 /// shape's space, given where the centre is; `to_world` maps that space to the world.
-fn sphere_contact(
+pub(crate) fn sphere_contact(
     centre: DVec3,
     radius: f64,
     nearest: Nearest,
@@ -235,19 +148,4 @@ fn closest_on_face<S: Convex>(shape: &S, f: u32, p: DVec3) -> DVec3 {
         }
     }
     closest.0
-}
-
-/// Where `centre` is with respect to the box `[-half, half]` (Ericson 5.1.4):
-/// outside, the centre clamped to the box; inside, the face it is nearest,
-/// on the axis with the least `half - |centre|` (first on ties).
-fn nearest_on_box(centre: DVec3, half: DVec3) -> Nearest {
-    let point = centre.clamp(-half, half);
-    let excess = centre.abs() - half;
-    let axis = (1..3).fold(0, |k, i| if excess[i] > excess[k] { i } else { k });
-    let normal = DVec3::AXES[axis] * if centre[axis] < 0.0 { -1.0 } else { 1.0 };
-    if point != centre {
-        Nearest::Outside { point, fallback: normal }
-    } else {
-        Nearest::Inside { normal, separation: excess[axis] }
-    }
 }
