@@ -3,14 +3,13 @@
 //! written as it is tested: runs of pairs on rayon tasks, their lists joined
 //! in order, so the events are the same on any number of threads.
 
-use bvol_narrow::{Collision, Contact, WarmStart, hull_hull, sphere_hull, sphere_sphere};
-use bvol_volumes::{Pose, prefetch};
+use bvol_narrow::{Contact, WarmStart, collide_parts};
+use bvol_volumes::prefetch;
 use rayon::prelude::*;
 
 use crate::BodyKind;
 use crate::bodies::Bodies;
 use crate::event::{ContactEvent, EventKind};
-use crate::shape::Part;
 
 /// How many pairs ahead the narrow phase asks for the second body's data.
 const AHEAD: usize = 8;
@@ -197,34 +196,13 @@ fn collide(bodies: &Bodies, a: u32, b: u32, state: &mut PairState) -> Option<Con
                 0 => &mut state.warm,
                 k => &mut state.more[k - 1],
             };
-            let found = part_contact(pa, &bodies.poses[a], pb, &bodies.poses[b], cache);
-            if let Some(c) = found.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
+            // Poses were checked when set, so the tests cannot fail.
+            let found = collide_parts(pa, &bodies.poses[a], pb, &bodies.poses[b], cache);
+            let contact = found.ok().and_then(|c| c.contact().copied());
+            if let Some(c) = contact.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
                 deepest = Some(c);
             }
         }
     }
     deepest
-}
-
-/// How two convex parts touch, if they do, the normal from `pa` to `pb`.
-/// Poses were checked when set, so the tests cannot fail.
-fn part_contact(pa: &Part, a: &Pose, pb: &Part, b: &Pose, warm: &mut WarmStart) -> Option<Contact> {
-    let collision = match (pa, pb) {
-        (Part::Hull(x), Part::Hull(y)) => hull_hull(&x.polyhedron, a, &y.polyhedron, b, warm),
-        (Part::Ball(x), Part::Hull(y)) => sphere_hull(x, a, &y.polyhedron, b),
-        (Part::Hull(x), Part::Ball(y)) => sphere_hull(y, b, &x.polyhedron, a).map(flip),
-        (Part::Ball(x), Part::Ball(y)) => sphere_sphere(x, a, y, b),
-    };
-    collision.ok()?.contact().copied()
-}
-
-/// The same collision seen from the other body: the normal reversed.
-fn flip(c: Collision) -> Collision {
-    match c {
-        Collision::Separated { axis, distance } => Collision::Separated { axis: -axis, distance },
-        Collision::Touching(mut contact) => {
-            contact.normal = -contact.normal;
-            Collision::Touching(contact)
-        }
-    }
 }

@@ -5,9 +5,9 @@
 use std::fmt;
 use std::path::Path;
 
-use bvol_narrow::Polyhedron;
+use bvol_narrow::{Capsule, HullPart, MassProperties, Part, Polyhedron};
 use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
-use glam::{DVec3, Vec3};
+use glam::Vec3;
 
 use crate::limits::{MAX_COORDINATE, within_limit};
 use crate::mesh::{Mesh, MeshError, load_obj};
@@ -26,24 +26,6 @@ impl Default for FitOptions {
     fn default() -> Self {
         FitOptions { sphere: SphereMethod::Exact, obb: ObbMethod::MinVolume }
     }
-}
-
-/// One convex part of a shape, as the narrow phase tests it.
-#[derive(Clone, Debug)]
-pub enum Part {
-    /// A convex polyhedron: the hull of a mesh object or a primitive.
-    Hull(Box<HullPart>),
-    /// An exact ball.
-    Ball(Sphere),
-}
-
-/// A convex polyhedron part.
-#[derive(Clone, Debug)]
-pub struct HullPart {
-    /// What the separating-axis tests read.
-    pub polyhedron: Polyhedron,
-    /// Its faces as planes, for ray casts.
-    pub hull: ConvexHull,
 }
 
 /// A body's geometry in its own frame: convex parts (several when a mesh file
@@ -138,10 +120,6 @@ impl From<FitError> for ShapeError {
     }
 }
 
-/// Points on a unit sphere (a Fibonacci lattice): the hull of a capsule's
-/// caps. 64 points keep the hull within 2% of the round surface.
-const CAP_POINTS: usize = 64;
-
 impl Shape {
     /// A shape of one convex part, the hull of `points`, with default fits.
     pub fn convex(points: &[Vec3]) -> Result<Shape, ShapeError> {
@@ -201,16 +179,15 @@ impl Shape {
     }
 
     /// A capsule along y (a segment of half length `half_height` swept by a
-    /// ball of `radius`), as a convex hull of its two capped ends.
+    /// ball of `radius`), tested exactly: its sphere is the smallest, its OBB
+    /// its box.
     pub fn capsule(radius: f32, half_height: f32) -> Result<Shape, ShapeError> {
         if !(radius > 0.0 && half_height >= 0.0 && within_limit(Vec3::splat(radius + half_height)))
         {
             return Err(ShapeError::BadSize { primitive: "capsule" });
         }
-        let points: Vec<Vec3> = fibonacci_sphere(CAP_POINTS)
-            .map(|p| p * radius + Vec3::Y * half_height.copysign(p.y))
-            .collect();
-        Self::from_parts(vec![hull_part("capsule", &points)?], FitOptions::default())
+        let capsule = Capsule::new(radius, half_height);
+        Self::from_parts(vec![Part::Capsule(capsule)], FitOptions::default())
     }
 
     /// A regular tetrahedron with its corners at distance `radius` from the
@@ -254,23 +231,26 @@ impl Shape {
     /// The nearest `t` in `[0, max_t]` at which a ray in the shape's frame
     /// meets a part (`0` when it starts inside one).
     pub fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32> {
-        self.parts
-            .iter()
-            .filter_map(|part| match part {
-                Part::Hull(part) => hull_ray_entry(&part.hull, ray, max_t),
-                Part::Ball(sphere) => sphere.ray_entry(ray, max_t),
-            })
-            .min_by(f32::total_cmp)
+        self.parts.iter().filter_map(|part| part.ray_entry(ray, max_t)).min_by(f32::total_cmp)
     }
 
-    /// The bounds of the parts' points, by the chosen methods.
-    /// A lone ball's sphere is the ball itself, whatever the method.
+    /// The volume, centre of mass and inertia about it of the parts together
+    /// at unit density ([`MassProperties::combine`]): parts that overlap
+    /// count twice where they do, as separate bodies glued together would.
+    pub fn mass_properties(&self) -> MassProperties {
+        MassProperties::combine(self.parts.iter().map(Part::mass_properties))
+    }
+
+    /// The bounds of the parts' fit points, by the chosen methods. A lone
+    /// part whose smallest sphere is known in closed form (a ball, a capsule)
+    /// is bounded by that sphere, whatever the method.
     fn from_parts(parts: Vec<Part>, fit: FitOptions) -> Result<Shape, ShapeError> {
-        let points: Vec<Vec3> = parts.iter().flat_map(part_points).collect();
-        let sphere = match parts.as_slice() {
-            [Part::Ball(ball)] => *ball,
-            _ => Sphere::fit(&points, fit.sphere)?,
+        let points: Vec<Vec3> = parts.iter().flat_map(Part::fit_points).collect();
+        let lone = match parts.as_slice() {
+            [part] => part.enclosing_sphere(),
+            _ => None,
         };
+        let sphere = lone.map_or_else(|| Sphere::fit(&points, fit.sphere), Ok)?;
         let obb = Obb::fit(&points, fit.obb)?;
         Ok(Shape { parts, bounds: BodyBounds { sphere, obb } })
     }
@@ -287,56 +267,4 @@ fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
         .map_err(|reason| ShapeError::Part { part: name.to_owned(), reason })?;
     let hull = ConvexHull::new(points)?;
     Ok(Part::Hull(Box::new(HullPart { polyhedron, hull })))
-}
-
-/// Points whose bounds hold the part: a hull's vertices, or the corners of a
-/// ball's cube (points on the ball itself would not do: their hull lies
-/// inside the ball, and so might a box fitted to them).
-fn part_points(part: &Part) -> Vec<Vec3> {
-    match part {
-        Part::Hull(part) => part.polyhedron.vertices().to_vec(),
-        Part::Ball(s) => (0..8)
-            .map(|i| {
-                let corner = Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32);
-                s.center + (corner * 2.0 - 1.0) * s.radius
-            })
-            .collect(),
-    }
-}
-
-/// `n` points spread evenly on the unit sphere (the Fibonacci lattice).
-fn fibonacci_sphere(n: usize) -> impl Iterator<Item = Vec3> {
-    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
-    (0..n).map(move |i| {
-        let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
-        let r = (1.0 - y * y).sqrt();
-        let a = golden * i as f64;
-        DVec3::new(r * a.cos(), y, r * a.sin()).as_vec3()
-    })
-}
-
-/// Where a ray enters a solid hull: the ray's parameter interval clipped by
-/// every face plane (Ericson 5.3.8), in f64.
-fn hull_ray_entry(hull: &ConvexHull, ray: &Ray, max_t: f32) -> Option<f32> {
-    if !(ray.origin.is_finite() && ray.direction.is_finite() && max_t >= 0.0) {
-        return None;
-    }
-    let (o, d) = (ray.origin.as_dvec3(), ray.direction.as_dvec3());
-    let (mut enter, mut exit) = (0.0f64, max_t as f64);
-    for f in 0..hull.face_count() {
-        let (n, offset) = (hull.face_normal(f), hull.face_offset(f));
-        let (dist, rate) = (n.dot(o) - offset, n.dot(d));
-        if rate == 0.0 {
-            if dist > 0.0 {
-                return None;
-            }
-        } else {
-            let t = -dist / rate;
-            if rate < 0.0 { enter = enter.max(t) } else { exit = exit.min(t) }
-        }
-        if enter > exit {
-            return None;
-        }
-    }
-    Some(enter as f32)
 }

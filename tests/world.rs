@@ -8,12 +8,12 @@ use std::collections::BTreeSet;
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use bvol::narrow::{WarmStart, hull_hull, sphere_hull, sphere_sphere};
+use bvol::narrow::{WarmStart, collide_parts};
 use bvol::volumes::Aabb;
 use bvol::volumes::{Pose, Ray};
 use bvol::{
     BodyDesc, BodyId, BodyKind, Broadphase, BruteForce, ContactEvent, EventKind, FitOptions,
-    MeshProblem, Part, Shape, ShapeError, World, WorldError,
+    MeshProblem, Shape, ShapeError, World, WorldError,
 };
 use glam::{Quat, Vec3, Vec4};
 use proptest::prelude::*;
@@ -64,9 +64,10 @@ fn random_pose(rng: &mut SmallRng, side: f32) -> Pose {
     Pose::new(p, q.normalize())
 }
 
-/// The touching pairs by brute force: every pair of bodies whose vertex boxes
-/// (computed here from the shapes' parts, not the world's bounds) overlap,
-/// tested part by part with the narrow phase, no warm start.
+/// The touching pairs by brute force: every pair of bodies whose boxes
+/// (computed here from the parts' support points along the world's axes, not
+/// the world's bounds) overlap, tested part by part with the narrow phase's
+/// pair table, no warm start.
 fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
     let ids: Vec<BodyId> = world.bodies().collect();
     let boxes: Vec<(Vec3, Vec3)> = ids
@@ -77,17 +78,10 @@ fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
             let mut lo = Vec3::INFINITY;
             let mut hi = Vec3::NEG_INFINITY;
             for part in shape.parts() {
-                match part {
-                    Part::Hull(h) => {
-                        for &v in h.polyhedron.vertices() {
-                            let w = pose.transform_point(v);
-                            (lo, hi) = (lo.min(w), hi.max(w));
-                        }
-                    }
-                    Part::Ball(s) => {
-                        let c = pose.transform_point(s.center);
-                        (lo, hi) = (lo.min(c - s.radius), hi.max(c + s.radius));
-                    }
+                for axis in [Vec3::X, Vec3::Y, Vec3::Z, -Vec3::X, -Vec3::Y, -Vec3::Z] {
+                    let local = pose.rotation.inverse() * axis;
+                    let w = pose.transform_point(part.support(local));
+                    (lo, hi) = (lo.min(w), hi.max(w));
                 }
             }
             let pad = 1e-4 * (hi - lo).max_element();
@@ -120,14 +114,7 @@ fn touch(world: &World, a: BodyId, b: BodyId) -> bool {
     let (sa, sb) = (world.shape(a).unwrap(), world.shape(b).unwrap());
     sa.parts().iter().any(|x| {
         sb.parts().iter().any(|y| {
-            let c = match (x, y) {
-                (Part::Hull(x), Part::Hull(y)) => {
-                    hull_hull(&x.polyhedron, &pa, &y.polyhedron, &pb, &mut WarmStart::default())
-                }
-                (Part::Ball(x), Part::Hull(y)) => sphere_hull(x, &pa, &y.polyhedron, &pb),
-                (Part::Hull(x), Part::Ball(y)) => sphere_hull(y, &pb, &x.polyhedron, &pa),
-                (Part::Ball(x), Part::Ball(y)) => sphere_sphere(x, &pa, y, &pb),
-            };
+            let c = collide_parts(x, &pa, y, &pb, &mut WarmStart::default());
             c.unwrap().is_touching()
         })
     })
@@ -233,14 +220,13 @@ fn moving_b_along_the_normal_by_the_depth_separates_them() {
         let c = e.contact.unwrap();
         assert!((c.normal.length() - 1.0).abs() < 1e-4);
         // Moving B along the normal by more than the depth separates them,
-        // when A and B are single hulls.
+        // when A and B are single parts.
         let (pa, pb) = (world.pose(e.a).unwrap(), world.pose(e.b).unwrap());
         let (sa, sb) = (world.shape(e.a).unwrap(), world.shape(e.b).unwrap());
-        if let ([Part::Hull(x)], [Part::Hull(y)]) = (sa.parts(), sb.parts()) {
+        if let ([x], [y]) = (sa.parts(), sb.parts()) {
             let size = world.world_sphere(e.a).unwrap().radius;
             let apart = Pose::new(pb.position + c.normal * (c.depth + 1e-3 * size), pb.rotation);
-            let test =
-                hull_hull(&x.polyhedron, &pa, &y.polyhedron, &apart, &mut WarmStart::default());
+            let test = collide_parts(x, &pa, y, &apart, &mut WarmStart::default());
             assert!(!test.unwrap().is_touching(), "{e:?}");
             checked += 1;
         }
