@@ -5,6 +5,7 @@
 use bvol_volumes::Sphere;
 use glam::DVec3;
 
+use crate::ball::check_sphere;
 use crate::capsule::MEET;
 use crate::isometry::DIsometry3;
 use crate::manifold::Manifold;
@@ -51,9 +52,7 @@ pub fn capsule_sphere(
     let iso_a = DIsometry3::of_pose(pose_a, Body::A)?;
     a.check(Body::A)?;
     let iso_b = DIsometry3::of_pose(pose_b, Body::B)?;
-    if !(b.center.is_finite() && b.radius.is_finite() && b.radius >= 0.0) {
-        return Err(NarrowError::NonFiniteShape { body: Body::B });
-    }
+    check_sphere(b, Body::B)?;
     let centre = iso_a.relative(&iso_b).apply(b.center.as_dvec3());
     let half = f64::from(a.half_height);
     let nearest = DVec3::new(0.0, centre.y.clamp(-half, half), 0.0);

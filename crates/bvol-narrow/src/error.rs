@@ -79,8 +79,8 @@ pub enum NarrowError {
         /// The body whose pose is bad.
         body: Body,
     },
-    /// The shape of `body` (a box or a sphere) has a NaN or infinite field, or a
-    /// negative half extent or radius.
+    /// The shape of `body` (a box, a sphere or a capsule) has a NaN or
+    /// infinite field, or a negative half extent or radius.
     NonFiniteShape {
         /// The body whose shape is bad.
         body: Body,

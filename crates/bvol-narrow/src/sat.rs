@@ -112,7 +112,7 @@ pub(crate) fn face_separation<R: Convex, O: Convex>(
 ///
 /// With `masks` (a cold pair sunk deep: the bounds are weak, and which faces
 /// they rule out is new to the branch predictor; see `MASK_DEPTH` in
-/// `hull.rs`) the query takes the three bounds of a run of up to 64 faces
+/// `hull_hull.rs`) the query takes the three bounds of a run of up to 64 faces
 /// without a branch, as a bit mask of the faces left, then searches those;
 /// else it tests each face's bounds in turn, which costs less when most
 /// faces fall to the first. Either way a face that can beat
