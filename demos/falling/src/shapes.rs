@@ -27,6 +27,8 @@ const BALL_RADIUS: f32 = 0.32;
 const CAPSULE: (f32, f32) = (0.18, 0.24);
 /// Distance from the tetrahedron's centre to its corners.
 const TETRA_RADIUS: f32 = 0.5;
+/// Points on the capsule's render mesh: the caps' share of them each.
+const CAPSULE_POINTS: usize = 128;
 /// Segments of the ball's render mesh around its axis and from pole to pole.
 const BALL_SEGMENTS: (u32, u32) = (20, 12);
 /// The same for its far mesh.
@@ -154,7 +156,7 @@ fn primitives(fit: FitOptions) -> Result<Vec<ShapeEntry>, ShapeError> {
                 ),
                 _ => {
                     let mesh = match name {
-                        "capsule" => smooth_capsule(&shape, half_height),
+                        "capsule" => smooth_capsule(&shape),
                         _ => flat_hull_mesh(&shape),
                     };
                     (mesh.clone(), mesh)
@@ -248,33 +250,10 @@ fn file_error(path: &Path, e: &ShapeError) -> String {
 }
 
 /// The centre of mass of a shape's parts taken as uniform solids (overlaps
-/// counted twice), in f64: each hull split into tetrahedra from its first
-/// vertex, whose centroids weigh by their signed volumes.
+/// counted twice: [`Shape::mass_properties`]).
 fn centre_of_mass(shape: &Shape) -> Vec3 {
-    let (mut volume, mut moment) = (0.0f64, DVec3::ZERO);
-    for part in shape.parts() {
-        let (v, c) = match part {
-            Part::Hull(part) => hull_mass(&part.hull),
-            Part::Ball(s) => (s.volume() as f64, s.center.as_dvec3()),
-        };
-        volume += v;
-        moment += c * v;
-    }
-    if volume > 0.0 { (moment / volume).as_vec3() } else { shape.obb().center }
-}
-
-/// The volume and centroid of a solid hull.
-fn hull_mass(hull: &ConvexHull) -> (f64, DVec3) {
-    let vertices = hull.vertices();
-    let o = vertices[0].as_dvec3();
-    let (mut volume, mut moment) = (0.0f64, DVec3::ZERO);
-    for [a, b, c] in hull.triangles() {
-        let [a, b, c] = [a, b, c].map(|i| vertices[i as usize].as_dvec3());
-        let v = (a - o).dot((b - o).cross(c - o)) / 6.0;
-        volume += v;
-        moment += (o + a + b + c) / 4.0 * v;
-    }
-    if volume > 0.0 { (volume, moment / volume) } else { (0.0, o) }
+    let mass = shape.mass_properties();
+    if mass.volume > 0.0 { mass.center } else { shape.obb().center }
 }
 
 /// Flat-shaded triangles of the meshes on their own vertices (zero normals:
@@ -320,24 +299,39 @@ fn push_flat(out: &mut RenderMesh, positions: &[Vec3], triangles: impl Iterator<
     out.indices.extend(triangles.flatten().map(|i| base + i));
 }
 
-/// The capsule's hull with the normals of the round capsule (from the
-/// nearest point of its axis segment): it looks round and matches the
-/// collision hull exactly, so no vertex pokes out of its bounds.
-fn smooth_capsule(shape: &Shape, half_height: f32) -> RenderMesh {
+/// The shape's capsules as the hulls of [`CAPSULE_POINTS`] points on each,
+/// with the round capsule's normals (from the nearest point of its core): it
+/// looks round, and no vertex pokes out of its bounds.
+fn smooth_capsule(shape: &Shape) -> RenderMesh {
     let mut out = RenderMesh::default();
     for part in shape.parts() {
-        if let Part::Hull(part) = part {
-            let v = part.hull.vertices();
-            let normal = |p: Vec3| {
-                let axis = Vec3::Y * p.y.clamp(-half_height, half_height);
-                (p - axis).try_normalize().unwrap_or(Vec3::Y * p.y.signum())
-            };
-            out.positions.extend_from_slice(v);
-            out.normals.extend(v.iter().map(|&p| normal(p)));
-            out.indices.extend(part.hull.triangles().flatten());
-        }
+        let Part::Capsule(capsule) = part else { continue };
+        let (r, h) = (capsule.radius, capsule.half_height);
+        let normals: Vec<Vec3> = fibonacci_sphere(CAPSULE_POINTS).collect();
+        let points: Vec<Vec3> =
+            normals.iter().map(|&n| n * r + Vec3::Y * h.copysign(n.y)).collect();
+        let Ok(hull) = ConvexHull::new(&points) else { continue };
+        let base = out.positions.len() as u32;
+        out.positions.extend_from_slice(hull.vertices());
+        out.normals.extend(hull.vertices().iter().map(|&p| {
+            let core = Vec3::Y * p.y.clamp(-h, h);
+            (p - core).try_normalize().unwrap_or(Vec3::Y * p.y.signum())
+        }));
+        out.indices.extend(hull.triangles().flatten().map(|i| base + i));
     }
     out
+}
+
+/// `n` points spread evenly on the unit sphere (the Fibonacci lattice), in
+/// f64 and then rounded.
+fn fibonacci_sphere(n: usize) -> impl Iterator<Item = Vec3> {
+    let golden = std::f64::consts::PI * (3.0 - 5f64.sqrt());
+    (0..n).map(move |i| {
+        let y = 1.0 - 2.0 * (i as f64 + 0.5) / n as f64;
+        let r = (1.0 - y * y).sqrt();
+        let a = golden * i as f64;
+        DVec3::new(r * a.cos(), y, r * a.sin()).as_vec3()
+    })
 }
 
 /// A UV sphere with smooth normals: `segments.0` around y, `segments.1` from

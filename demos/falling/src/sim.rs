@@ -30,7 +30,7 @@ use std::time::{Duration, Instant};
 
 use bvol::narrow::Contact;
 use bvol::volumes::Pose;
-use bvol::{BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Part, Shape, World, WorldError};
+use bvol::{BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, World, WorldError};
 use glam::{Mat3, Quat, Vec3};
 
 /// Half the side of the square floor.
@@ -800,39 +800,19 @@ fn inverse_or_zero(k: f32) -> f32 {
 }
 
 /// Inverse mass and inverse inertia (about the origin, in the shape's axes)
-/// of a shape of density 1. The mass is the volume of its parts (hulls and
-/// balls; the OBB's volume if they have none). A lone ball's inertia is
-/// exact; any other shape's is that of a box of the same mass filling its
-/// OBB, turned by the OBB's axes and moved by its centre (parallel axes).
+/// of a shape of density 1: its parts' exact volume and inertia
+/// ([`Shape::mass_properties`]), the inertia moved from their centre of mass
+/// to the origin (parallel axes).
 fn mass_properties(shape: &Shape) -> (f32, Mat3) {
-    let volume: f64 = shape
-        .parts()
-        .iter()
-        .map(|part| match part {
-            Part::Hull(part) => part.hull.volume(),
-            Part::Ball(ball) => ball.volume() as f64,
-        })
-        .sum();
-    let volume = if volume > 0.0 { volume as f32 } else { shape.obb().volume() };
+    let properties = shape.mass_properties();
+    let volume = properties.volume;
     let mass = if volume.is_finite() && volume > 0.0 { volume } else { 1.0 };
-    let (inertia, centre) = match shape.parts() {
-        [Part::Ball(ball)] => {
-            (Mat3::from_diagonal(Vec3::splat(0.4 * mass * ball.radius.powi(2))), ball.center)
-        }
-        _ => {
-            let obb = shape.obb();
-            let h2 = obb.half_extents * obb.half_extents;
-            let d = Vec3::new(h2.y + h2.z, h2.x + h2.z, h2.x + h2.y) * (mass / 3.0);
-            (obb.axes * Mat3::from_diagonal(d) * obb.axes.transpose(), obb.center)
-        }
-    };
-    let outer = Mat3::from_cols(centre * centre.x, centre * centre.y, centre * centre.z);
-    let inertia = inertia + (Mat3::IDENTITY * centre.length_squared() - outer) * mass;
+    let inertia = properties.inertia_about(Vec3::ZERO);
     let det = inertia.determinant();
     let inv_inertia = if det.is_finite() && det > 0.0 {
         inertia.inverse()
     } else {
-        // A flat box has no inertia across: treat it as a ball of the same size.
+        // A shape of no volume has no inertia: treat it as a ball of its size.
         Mat3::from_diagonal(Vec3::splat(inverse_or_zero(
             0.4 * mass * shape.sphere().radius.powi(2),
         )))
@@ -844,21 +824,14 @@ fn mass_properties(shape: &Shape) -> (f32, Mat3) {
 mod tests {
     use super::*;
     use crate::shapes::ShapeLibrary;
-    use bvol::FitOptions;
+    use bvol::{FitOptions, Part};
     use bvol::volumes::{ObbMethod, SphereMethod};
 
-    /// The lowest point of a body: its hull vertices or balls, moved by its pose.
+    /// The lowest point of a body: its parts' support points straight down.
     fn lowest_point(body: &Body, shape: &Shape) -> f32 {
         let pose = body.pose();
-        let part_low = |part: &Part| match part {
-            Part::Hull(h) => h
-                .hull
-                .vertices()
-                .iter()
-                .map(|&v| pose.transform_point(v).y)
-                .fold(f32::MAX, f32::min),
-            Part::Ball(s) => pose.transform_point(s.center).y - s.radius,
-        };
+        let down = pose.rotation.inverse() * Vec3::NEG_Y;
+        let part_low = |part: &Part| pose.transform_point(part.support(down)).y;
         shape.parts().iter().map(part_low).fold(f32::MAX, f32::min)
     }
 

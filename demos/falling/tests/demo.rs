@@ -80,24 +80,14 @@ fn rebuild(end: &Value, library: &ShapeLibrary) -> (World, Vec<bvol::BodyId>) {
     (world, ids)
 }
 
-/// The lowest point of a body: its hull vertices and balls, posed.
+/// The lowest point of a body: its parts' support points straight down,
+/// posed.
 fn lowest_point(world: &World, id: bvol::BodyId) -> f32 {
     let pose = world.pose(id).unwrap();
     let shape = world.shape(id).unwrap();
-    let mut lowest = f32::INFINITY;
-    for part in shape.parts() {
-        match part {
-            Part::Hull(hull) => {
-                for v in hull.hull.vertices() {
-                    lowest = lowest.min((pose.rotation * *v + pose.position).y);
-                }
-            }
-            Part::Ball(ball) => {
-                lowest = lowest.min((pose.rotation * ball.center + pose.position).y - ball.radius);
-            }
-        }
-    }
-    lowest
+    let down = pose.rotation.inverse() * Vec3::NEG_Y;
+    let low = |part: &Part| (pose.rotation * part.support(down) + pose.position).y;
+    shape.parts().iter().map(low).fold(f32::INFINITY, f32::min)
 }
 
 /// 500 bodies, 300 frames headless: the image shows bodies where they are,
