@@ -824,8 +824,8 @@ fn mass_properties(shape: &Shape) -> (f32, Mat3) {
 mod tests {
     use super::*;
     use crate::shapes::ShapeLibrary;
-    use bvol::{FitOptions, Part};
     use bvol::volumes::{ObbMethod, SphereMethod};
+    use bvol::{FitOptions, Part};
 
     /// The lowest point of a body: its parts' support points straight down.
     fn lowest_point(body: &Body, shape: &Shape) -> f32 {
