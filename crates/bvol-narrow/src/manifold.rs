@@ -10,6 +10,7 @@ use glam::DVec3;
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
 use crate::plane::Plane;
+use crate::segment::Segment;
 
 /// Incident points above the reference plane by less than this, relative to
 /// the shapes' size, still count as touching: f64 rounding of exactly
@@ -111,7 +112,8 @@ pub(crate) fn vertex_contact<R: Convex, I: Convex>(
     for &w in ti.neighbours(support) {
         let edge = rel.apply(incident.vertex(w)) - s;
         for &(p, e) in &rim {
-            let (ca, cb) = closest_points(p, e, s, edge);
+            let (ca, cb) =
+                Segment { start: p, delta: e }.closest_points(&Segment { start: s, delta: edge });
             let d = (ca - cb).length_squared();
             if d < best.0 {
                 best = (d, (ca + cb) * 0.5);
@@ -223,40 +225,9 @@ fn reduce(points: &[DVec3], plane: &Plane) -> Manifold {
 /// one point, midway between their closest points (Ericson 5.1.9), with the
 /// given depth.
 pub(crate) fn edge_contact(pa: DVec3, ea: DVec3, pb: DVec3, eb: DVec3, depth: f64) -> Manifold {
-    let (ca, cb) = closest_points(pa, ea, pb, eb);
+    let (ca, cb) =
+        Segment { start: pa, delta: ea }.closest_points(&Segment { start: pb, delta: eb });
     let mut manifold = Manifold::default();
     manifold.push((ca + cb) * 0.5, depth);
     manifold
-}
-
-/// The closest points of segments `p1 + s d1` and `p2 + t d2`, `s, t` in
-/// `[0, 1]` (Ericson 5.1.9, `ClosestPtSegmentSegment`). Zero-length segments
-/// and parallel ones are handled; a tiny positive divisor only gives a
-/// parameter that the clamp brings back.
-fn closest_points(p1: DVec3, d1: DVec3, p2: DVec3, d2: DVec3) -> (DVec3, DVec3) {
-    let r = p1 - p2;
-    let (a, e, f) = (d1.length_squared(), d2.length_squared(), d2.dot(r));
-    let (s, t) = if a <= 0.0 && e <= 0.0 {
-        (0.0, 0.0)
-    } else if a <= 0.0 {
-        (0.0, (f / e).clamp(0.0, 1.0))
-    } else {
-        let c = d1.dot(r);
-        if e <= 0.0 {
-            ((-c / a).clamp(0.0, 1.0), 0.0)
-        } else {
-            let b = d1.dot(d2);
-            let denom = a * e - b * b;
-            let s = if denom > 0.0 { ((b * f - c * e) / denom).clamp(0.0, 1.0) } else { 0.0 };
-            let t = (b * s + f) / e;
-            if t < 0.0 {
-                ((-c / a).clamp(0.0, 1.0), 0.0)
-            } else if t > 1.0 {
-                (((b - c) / a).clamp(0.0, 1.0), 1.0)
-            } else {
-                (s, t)
-            }
-        }
-    };
-    (p1 + d1 * s, p2 + d2 * t)
 }

@@ -33,7 +33,6 @@
 
 mod common;
 
-use std::collections::BTreeMap;
 use std::sync::OnceLock;
 use std::time::Instant;
 
@@ -44,6 +43,7 @@ use bvol_narrow::{
 use bvol_volumes::{Pose, Sphere};
 use common::reference::{Place, RefHull};
 use common::shapes::{self, TestShape};
+use common::tally::{Tally, run_chunks};
 use common::{parry_pose, random_in_ball, random_rotation, random_unit, to_parry};
 use glam::{DQuat, DVec3, Quat, Vec3};
 use parry3d::query;
@@ -306,89 +306,6 @@ fn angle_between(a: DVec3, b: DVec3) -> f64 {
 }
 
 // ---------------------------------------------------------------------------
-// Tallies
-
-/// Counts of outcomes, the worst errors, and the failures.
-#[derive(Default)]
-struct Tally {
-    pairs: usize,
-    counts: BTreeMap<String, usize>,
-    examples: BTreeMap<String, String>,
-    worst: BTreeMap<&'static str, f64>,
-    failures: usize,
-}
-
-impl Tally {
-    fn note(&mut self, what: impl Into<String>) {
-        *self.counts.entry(what.into()).or_default() += 1;
-    }
-
-    fn worst(&mut self, what: &'static str, value: f64) {
-        let w = self.worst.entry(what).or_insert(0.0);
-        *w = w.max(value);
-    }
-
-    /// Counts `what`, and keeps the first example of it.
-    fn example(&mut self, what: String, example: impl FnOnce() -> String) {
-        self.examples.entry(what.clone()).or_insert_with(example);
-        self.note(what);
-    }
-
-    fn fail(&mut self, what: &'static str, example: String) {
-        self.failures += 1;
-        self.example(format!("FAILURE: {what}"), || example);
-    }
-
-    fn absorb(&mut self, other: Tally) {
-        self.pairs += other.pairs;
-        self.failures += other.failures;
-        for (k, v) in other.counts {
-            *self.counts.entry(k).or_default() += v;
-        }
-        for (k, v) in other.examples {
-            self.examples.entry(k).or_insert(v);
-        }
-        for (k, v) in other.worst {
-            self.worst(k, v);
-        }
-    }
-
-    /// Prints everything and fails on any failure.
-    fn finish(self, title: &str, started: Instant) {
-        println!("{title}: {} pairs in {:.1?}", self.pairs, started.elapsed());
-        self.counts.iter().for_each(|(k, v)| println!("  {v:>8}  {k}"));
-        self.worst.iter().for_each(|(k, v)| println!("  worst {k}: {v:.3e}"));
-        self.examples.iter().for_each(|(k, v)| println!("  example of {k}: {v}"));
-        assert_eq!(self.failures, 0, "{title}: {} failures (examples above)", self.failures);
-    }
-}
-
-/// `chunks` seeded runs of `work`, spread over the cores; each chunk's
-/// generator depends on its number alone, so what is checked does not
-/// depend on the thread count.
-fn run(chunks: u64, seed: u64, work: impl Fn(&mut SmallRng, &mut Tally) + Sync) -> Tally {
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get()) as u64;
-    let work = &work;
-    let tallies: Vec<Tally> = std::thread::scope(|s| {
-        let handles: Vec<_> = (0..threads)
-            .map(|k| {
-                s.spawn(move || {
-                    let mut tally = Tally::default();
-                    for chunk in (k..chunks).step_by(threads as usize) {
-                        work(&mut SmallRng::seed_from_u64(seed << 32 | chunk), &mut tally);
-                    }
-                    tally
-                })
-            })
-            .collect();
-        handles.into_iter().map(|h| h.join().expect("worker")).collect()
-    });
-    let mut all = Tally::default();
-    tallies.into_iter().for_each(|t| all.absorb(t));
-    all
-}
-
-// ---------------------------------------------------------------------------
 // One pair, checked
 
 /// A pair in bvol's, parry3d's and the oracle's forms.
@@ -433,7 +350,7 @@ fn check(t: &mut Tally, case: &Case, got: Result<Collision, NarrowError>) {
     t.pairs += 1;
     let got = match got {
         Ok(got) => got,
-        Err(e) => return t.fail("an error", format!("{}: {e}", case.describe())),
+        Err(e) => return t.fail(vec!["FAILURE: an error"], format!("{}: {e}", case.describe())),
     };
     let exact = case.pair.exact();
     let right = against_exact(t, case, &got, &exact);
@@ -510,7 +427,7 @@ fn against_exact(t: &mut Tally, case: &Case, got: &Collision, exact: &Exact) -> 
     match first {
         None => true,
         Some(what) => {
-            t.fail(what, format!("{} exact {exact:?}: {problems}", case.describe()));
+            t.fail(vec![what], format!("{} exact {exact:?}: {problems}", case.describe()));
             false
         }
     }
@@ -525,7 +442,10 @@ fn check_points(t: &mut Tally, case: &Case, got: &Collision) {
     let points = contact.points();
     t.note(format!("manifold: {} point(s), {}", points.len(), case.family));
     if !(1..=2).contains(&points.len()) {
-        return t.fail("not 1 or 2 contact points", format!("{} {contact:?}", case.describe()));
+        return t.fail(
+            vec!["FAILURE: not 1 or 2 contact points"],
+            format!("{} {contact:?}", case.describe()),
+        );
     }
     for p in points {
         let (ea, eb) = case.pair.excess(p.position.as_dvec3());
@@ -533,7 +453,7 @@ fn check_points(t: &mut Tally, case: &Case, got: &Collision) {
         if !within || ea.max(eb) > depth + tol {
             let report =
                 format!("{} {contact:?}: {p:?} outside A by {ea:e}, B by {eb:e}", case.describe());
-            return t.fail("contact point off the bodies", report);
+            return t.fail(vec!["FAILURE: contact point off the bodies"], report);
         }
         t.worst(
             "manifold: point outside a body, over the depth",
@@ -770,7 +690,7 @@ fn lying_on(rng: &mut SmallRng, a: &Capsule, hull: &RefHull, place_b: &Place) ->
 fn capsules_against_capsules() {
     let started = Instant::now();
     let families = [Family::Random, Family::NearTouching, Family::Deep, Family::Parallel];
-    run(64, 1, |rng, t| {
+    run_chunks(64, 1, |rng, t| {
         for k in 0..500 {
             let family = if k % 50 == 49 { Family::Identical } else { families[k % 4] };
             let scale = SCALES[rng.random_range(0..3)];
@@ -831,7 +751,7 @@ fn side_by_side(rng: &mut SmallRng, (a, pose_a): (&Capsule, &Pose), b: &Capsule)
 fn capsules_against_balls() {
     let started = Instant::now();
     let families = [Family::Random, Family::NearTouching, Family::Deep];
-    run(40, 2, |rng, t| {
+    run_chunks(40, 2, |rng, t| {
         for k in 0..500 {
             let family = families[k % 3];
             let scale = SCALES[rng.random_range(0..3)];
@@ -907,7 +827,7 @@ const HULL_FAMILIES: [Family; 4] =
 #[test]
 fn capsules_against_boxes() {
     let started = Instant::now();
-    run(48, 3, |rng, t| {
+    run_chunks(48, 3, |rng, t| {
         for k in 0..500 {
             let scale = SCALES[rng.random_range(0..3)];
             let mut side = || rng.random_range(0.02..1.0) * scale;
@@ -934,7 +854,7 @@ fn capsules_against_boxes() {
 #[test]
 fn capsules_against_hulls() {
     let started = Instant::now();
-    run(48, 4, |rng, t| {
+    run_chunks(48, 4, |rng, t| {
         for k in 0..500 {
             let which = rng.random_range(0..3);
             let scene = &hulls()[which];

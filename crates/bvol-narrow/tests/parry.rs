@@ -27,17 +27,16 @@
 mod common;
 
 use std::cell::OnceCell;
-use std::collections::BTreeMap;
 use std::f32::consts::FRAC_PI_4;
 use std::fmt::Write as _;
 use std::sync::OnceLock;
-use std::sync::atomic::{AtomicUsize, Ordering};
 use std::time::Instant;
 
 use bvol_narrow::{Collision, WarmStart, hull_hull, obb_obb, sphere_obb};
 use bvol_volumes::{Obb, Pose, Sphere};
 use common::reference::{Candidates, Exact, Pair, Place, Prepared, RefHull, Sat, SphereHull};
 use common::shapes::{self, TestShape};
+use common::tally::{Tally, run_chunks};
 use common::{parry_pose, random_in_ball, random_rotation, random_unit, to_parry};
 use glam::{DMat3, DQuat, DVec3, Mat3, Quat, Vec3};
 use parry3d::query;
@@ -86,112 +85,6 @@ fn nudge(rng: &mut SmallRng, size: f64) -> f64 {
 /// The f32 rotation nearest an f64 one.
 fn to_quat(r: DQuat) -> Quat {
     r.normalize().as_quat().normalize()
-}
-
-// ---------------------------------------------------------------------------
-// Tallies
-
-/// Counts of each outcome, the worst errors seen, and the failures.
-#[derive(Default)]
-struct Tally {
-    pairs: usize,
-    /// How many pairs fell under each outcome.
-    counts: BTreeMap<String, usize>,
-    /// The first pair of each outcome, described.
-    examples: BTreeMap<String, String>,
-    /// The greatest relative error of each kind.
-    worst: BTreeMap<&'static str, f64>,
-    failures: usize,
-}
-
-impl Tally {
-    /// Counts one pair under `what`.
-    fn note(&mut self, what: impl Into<String>) {
-        *self.counts.entry(what.into()).or_default() += 1;
-    }
-
-    /// Keeps the greatest `value` of `what`.
-    fn worst(&mut self, what: &'static str, value: f64) {
-        let w = self.worst.entry(what).or_insert(0.0);
-        *w = w.max(value);
-    }
-
-    /// A failure of the kinds `tags`: counted under each, the first of each
-    /// kind kept as an example.
-    fn fail(&mut self, tags: Vec<&'static str>, report: String) {
-        self.failures += 1;
-        for tag in tags {
-            self.note(tag);
-            self.examples.entry(tag.to_string()).or_insert_with(|| report.clone());
-        }
-    }
-
-    /// Adds another tally's counts (its examples only where this has none).
-    fn merge(&mut self, other: Tally) {
-        self.pairs += other.pairs;
-        for (k, v) in other.counts {
-            *self.counts.entry(k).or_default() += v;
-        }
-        for (k, v) in other.examples {
-            self.examples.entry(k).or_insert(v);
-        }
-        for (k, v) in other.worst {
-            self.worst(k, v);
-        }
-        self.failures += other.failures;
-    }
-
-    /// Prints everything and fails on any failure.
-    fn finish(self, title: &str, started: Instant) {
-        println!("{title}: {} pairs in {:.1?}", self.pairs, started.elapsed());
-        for (k, v) in &self.counts {
-            println!("  {v:>9}  {k}");
-        }
-        for (k, v) in &self.worst {
-            println!("  worst {k}: {v:.3e}");
-        }
-        for (k, v) in &self.examples {
-            println!("  example of {k}: {v}");
-        }
-        assert_eq!(
-            self.failures, 0,
-            "{title}: {} failures (an example of each kind above)",
-            self.failures
-        );
-    }
-}
-
-/// Runs `chunks` seeded chunks of a generator on every core; each chunk has its
-/// own generator and tally, merged in chunk order, so that nothing printed
-/// depends on the thread count.
-fn run_chunks(chunks: usize, seed: u64, work: impl Fn(&mut SmallRng, &mut Tally) + Sync) -> Tally {
-    let next = AtomicUsize::new(0);
-    let threads = std::thread::available_parallelism().map_or(2, |n| n.get());
-    let mut done: Vec<(usize, Tally)> = std::thread::scope(|s| {
-        let handles: Vec<_> = (0..threads)
-            .map(|_| {
-                s.spawn(|| {
-                    let mut mine = Vec::new();
-                    loop {
-                        let chunk = next.fetch_add(1, Ordering::Relaxed);
-                        if chunk >= chunks {
-                            return mine;
-                        }
-                        let mut rng =
-                            SmallRng::seed_from_u64(seed.wrapping_mul(1_000_003) + chunk as u64);
-                        let mut tally = Tally::default();
-                        work(&mut rng, &mut tally);
-                        mine.push((chunk, tally));
-                    }
-                })
-            })
-            .collect();
-        handles.into_iter().flat_map(|h| h.join().expect("worker")).collect()
-    });
-    done.sort_by_key(|d| d.0);
-    let mut all = Tally::default();
-    done.into_iter().for_each(|(_, t)| all.merge(t));
-    all
 }
 
 // ---------------------------------------------------------------------------
@@ -435,10 +328,9 @@ fn check_pair(t: &mut Tally, case: &Case, got: Collision, always: bool) {
             }
         }
     };
-    t.examples.entry(category.clone()).or_insert_with(|| {
+    t.example(category, || {
         format!("{} exact {:?} parry {:?} bvol {:?}", case.describe(), sat, parry, got)
     });
-    t.note(category);
 }
 
 /// The decade of a relative gap, for the counts of parry3d's wrong verdicts.

@@ -7,6 +7,7 @@ pub mod reference;
 pub mod shapes;
 #[path = "../../../bvol-volumes/tests/common/shared.rs"]
 mod shared;
+pub mod tally;
 
 use bvol_volumes::Pose;
 use glam::Vec3;
