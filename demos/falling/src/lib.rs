@@ -9,6 +9,8 @@
 //! ([`ui`]) and its bounds, tree and contacts drawn as overlays
 //! ([`overlay`]).
 
+#![warn(missing_docs)]
+
 pub mod app;
 pub mod camera;
 pub mod frontend;

@@ -1,8 +1,8 @@
 //! What a frame draws, built from the app's state: each body as an instance
 //! of its shape's mesh, and the overlays the user switched on as lines.
 
-use bvol::{BodyId, Broadphase};
 use bvol::volumes::{Aabb, Obb, Sphere};
+use bvol::{BodyId, Broadphase};
 use glam::{Mat3, Mat4, Quat, Vec3};
 
 use crate::app::App;
