@@ -179,14 +179,16 @@ impl App {
     /// shapes; on failure the old ones stay and the log says why.
     pub fn set_fit(&mut self, fit: FitOptions) {
         if let Err(e) = self.library.set_fit(fit) {
-            self.report(format!("refit with {} / {} failed: {e}", fit.sphere, fit.obb));
+            self.report(format!("fitting with {} / {} failed: {e}", fit.sphere, fit.obb));
             return;
         }
         let shapes: Vec<Arc<Shape>> =
             self.library.entries.iter().map(|e| e.shape.clone()).collect();
         match self.sim.replace_shapes(&shapes) {
             Ok(()) => self.settings.fit = fit,
-            Err(e) => self.report(format!("could not hand the bodies their refitted shapes: {e}")),
+            Err(e) => {
+                self.report(format!("could not hand the bodies their shapes fitted anew: {e}"))
+            }
         }
         self.selected = None;
     }

@@ -359,9 +359,9 @@ impl Sim {
         self.contacts.clear();
     }
 
-    /// After a refit of the library: body `i` gets `shapes[body.shape]`
-    /// (bodies whose index has no shape keep theirs), with its pose, motion,
-    /// sleep and warm-start impulses kept. bvol has no call to change a
+    /// After the library's bounds were fitted anew: body `i` gets
+    /// `shapes[body.shape]` (bodies whose index has no shape keep theirs),
+    /// with its pose, motion, sleep and warm-start impulses kept. bvol has no call to change a
     /// body's shape, so each body is removed and added again (same slot, new
     /// handle); the world is updated once so that
     /// [`contacts`](Sim::contacts) names the new handles. Fails only if the
