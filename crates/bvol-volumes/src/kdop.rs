@@ -43,13 +43,6 @@ pub type Kdop18 = Kdop<9>;
 /// The 26-DOP: axes, corner and edge diagonals.
 pub type Kdop26 = Kdop<13>;
 
-/// One bounding plane `normal . x <= offset` of the polytope.
-#[derive(Clone, Copy)]
-struct Plane {
-    normal: DVec3,
-    offset: f64,
-}
-
 impl<const N: usize> Kdop<N> {
     /// The slab directions, in the order of `min` and `max`.
     pub const DIRECTIONS: [[i8; 3]; N] = directions::<N>();
@@ -111,21 +104,19 @@ impl<const N: usize> Kdop<N> {
     }
 
     /// Volume of the polytope: the sum over faces of area x distance from an
-    /// interior point / 3.
+    /// interior point / 3 (the divergence theorem; Ericson 2005, 4.6).
     pub fn volume(&self) -> f32 {
-        let vertices = self.vertices_f64();
-        let inner = vertices.iter().sum::<DVec3>() / vertices.len() as f64;
-        let volume: f64 = self
-            .faces(&vertices)
-            .map(|(plane, area)| area * (plane.offset - plane.normal.dot(inner)) / 3.0)
-            .sum();
+        let faces = self.faces();
+        let vertices: Vec<DVec3> = faces.iter().flat_map(|f| f.polygon.iter().copied()).collect();
+        let inner = vertices.iter().sum::<DVec3>() / vertices.len().max(1) as f64;
+        let volume: f64 =
+            faces.iter().map(|f| f.area() * f.normal.dot(f.polygon[0] - inner) / 3.0).sum();
         volume as f32
     }
 
     /// Surface area of the polytope (a flat k-DOP counts both sides).
     pub fn surface_area(&self) -> f32 {
-        let vertices = self.vertices_f64();
-        self.faces(&vertices).map(|(_, area)| area).sum::<f64>() as f32
+        self.faces().iter().map(Face::area).sum::<f64>() as f32
     }
 
     /// Where a ray enters the k-DOP: `Some(0.0)` if it starts inside or on a
@@ -142,79 +133,136 @@ impl<const N: usize> Kdop<N> {
         Some(clip.entry())
     }
 
-    /// The 2N bounding planes, normals unit length.
-    fn planes(&self) -> impl Iterator<Item = Plane> + '_ {
-        (0..N).flat_map(move |i| {
+    /// The box of the axis slabs' centre: the polytope's vertices are kept
+    /// relative to it, so that a polytope far longer than it is wide (or far
+    /// from the origin) keeps its narrow side's digits.
+    fn centre(&self) -> DVec3 {
+        let mid = |i: usize| 0.5 * (self.min[i] as f64 + self.max[i] as f64);
+        DVec3::new(mid(0), mid(1), mid(2))
+    }
+
+    /// The polytope's faces, relative to [`centre`](Self::centre): the box of
+    /// the axis slabs (the first three directions) clipped by every other
+    /// slab's two planes in turn (Sutherland and Hodgman 1974, on each face;
+    /// the points cut out of the faces make the new face). Each vertex is
+    /// interpolated along an edge, never solved from three planes, so an edge
+    /// along one axis keeps its other coordinates exactly: no tolerance, and
+    /// no cancellation at any aspect ratio. Empty where a slab is inverted.
+    fn faces(&self) -> Vec<Face> {
+        if (0..N).any(|i| self.min[i] > self.max[i]) {
+            return Vec::new();
+        }
+        let c = self.centre();
+        let half = |i: usize| 0.5 * (self.max[i] as f64 - self.min[i] as f64);
+        let mut faces = box_faces(DVec3::new(half(0), half(1), half(2)));
+        for i in 3..N {
             let n = as_dvec3(Self::DIRECTIONS[i]);
-            let len = n.length();
-            [
-                Plane { normal: n / len, offset: self.max[i] as f64 / len },
-                Plane { normal: -n / len, offset: -(self.min[i] as f64) / len },
-            ]
-        })
+            let (hi, lo) = (self.max[i] as f64 - n.dot(c), self.min[i] as f64 - n.dot(c));
+            for (normal, offset) in [(n, hi), (-n, -lo)] {
+                faces = clip(faces, normal, offset);
+            }
+        }
+        faces
     }
 
-    /// A tolerance for "on the plane", relative to the polytope's size and place.
-    fn tolerance(&self) -> f64 {
-        let scale = self.min.iter().chain(&self.max).fold(0.0f64, |m, v| m.max(v.abs() as f64));
-        1e-9 * scale.max(f64::MIN_POSITIVE)
-    }
-
-    /// The polytope's vertices: every feasible intersection of three planes,
-    /// each once (O(k^3 k), fine for k <= 26). Integer directions make every
-    /// 3x3 determinant an exact integer, so singular triples are skipped exactly.
+    /// The polytope's vertices, each once.
     fn vertices_f64(&self) -> Vec<DVec3> {
-        let planes: Vec<Plane> = self.planes().collect();
-        let tol = self.tolerance();
+        let c = self.centre();
         let mut out: Vec<DVec3> = Vec::new();
-        for a in 0..planes.len() {
-            for b in a + 1..planes.len() {
-                for c in b + 1..planes.len() {
-                    let Some(x) = intersect(planes[a], planes[b], planes[c]) else {
-                        continue;
-                    };
-                    let feasible = planes.iter().all(|p| p.normal.dot(x) <= p.offset + tol);
-                    if feasible && out.iter().all(|v| (*v - x).abs().max_element() > tol) {
-                        out.push(x);
-                    }
-                }
+        for v in self.faces().iter().flat_map(|f| f.polygon.iter()) {
+            let v = *v + c;
+            if !out.contains(&v) {
+                out.push(v);
             }
         }
         out
     }
+}
 
-    /// Each face as its plane and its polygon's area (vertices on the plane,
-    /// ordered by angle about their centroid).
-    fn faces<'a>(&'a self, vertices: &'a [DVec3]) -> impl Iterator<Item = (Plane, f64)> + 'a {
-        let tol = self.tolerance();
-        self.planes().filter_map(move |plane| {
-            let on: Vec<DVec3> = vertices
-                .iter()
-                .copied()
-                .filter(|v| (plane.normal.dot(*v) - plane.offset).abs() <= tol)
-                .collect();
-            (on.len() >= 3).then(|| (plane, polygon_area(plane.normal, on)))
-        })
+/// A face of a polytope: a convex polygon, vertices in order, and its
+/// outward unit normal.
+struct Face {
+    normal: DVec3,
+    polygon: Vec<DVec3>,
+}
+
+impl Face {
+    fn area(&self) -> f64 {
+        let p = &self.polygon;
+        let twice: DVec3 = (1..p.len() - 1).map(|i| (p[i] - p[0]).cross(p[i + 1] - p[0])).sum();
+        0.5 * twice.dot(self.normal).abs()
     }
 }
 
-/// The point on three planes, or `None` where they do not meet in one point.
-fn intersect(a: Plane, b: Plane, c: Plane) -> Option<DVec3> {
-    let (bc, ca, ab) =
-        (b.normal.cross(c.normal), c.normal.cross(a.normal), a.normal.cross(b.normal));
-    let det = a.normal.dot(bc);
-    (det.abs() > 1e-12).then(|| (bc * a.offset + ca * b.offset + ab * c.offset) / det)
+/// The six faces of the box `-half..=half`.
+fn box_faces(h: DVec3) -> Vec<Face> {
+    let corner = |i: usize| {
+        DVec3::new(
+            if i & 1 == 0 { -h.x } else { h.x },
+            if i & 2 == 0 { -h.y } else { h.y },
+            if i & 4 == 0 { -h.z } else { h.z },
+        )
+    };
+    // Corner indices of each face, in order around it.
+    let faces: [(DVec3, [usize; 4]); 6] = [
+        (DVec3::NEG_X, [0, 4, 6, 2]),
+        (DVec3::X, [1, 3, 7, 5]),
+        (DVec3::NEG_Y, [0, 1, 5, 4]),
+        (DVec3::Y, [2, 6, 7, 3]),
+        (DVec3::NEG_Z, [0, 2, 3, 1]),
+        (DVec3::Z, [4, 5, 7, 6]),
+    ];
+    faces.map(|(normal, ids)| Face { normal, polygon: ids.map(corner).to_vec() }).into()
 }
 
-/// Area of a convex polygon given as unordered points on a plane with unit normal `n`.
-fn polygon_area(n: DVec3, mut points: Vec<DVec3>) -> f64 {
+/// The faces of a convex polytope cut by the half-space `n . x <= offset`
+/// (`n` integer, exact): each face clipped, and the cut closed by a new face
+/// of the points on the plane. Faces left with fewer than 3 vertices go.
+fn clip(faces: Vec<Face>, n: DVec3, offset: f64) -> Vec<Face> {
+    let mut cut = Vec::new();
+    let mut out: Vec<Face> = faces
+        .into_iter()
+        .filter_map(|f| {
+            let polygon = clip_polygon(&f.polygon, n, offset, &mut cut);
+            (polygon.len() >= 3).then_some(Face { normal: f.normal, polygon })
+        })
+        .collect();
+    if cut.len() >= 3 {
+        let normal = n.normalize();
+        out.push(Face { normal, polygon: in_order(normal, cut) });
+    }
+    out
+}
+
+/// One polygon clipped to `n . x <= offset`; the points on the plane (kept
+/// vertices and crossings of edges) are added to `on_plane`.
+fn clip_polygon(p: &[DVec3], n: DVec3, offset: f64, on_plane: &mut Vec<DVec3>) -> Vec<DVec3> {
+    let mut out = Vec::with_capacity(p.len() + 1);
+    for (i, &a) in p.iter().enumerate() {
+        let b = p[(i + 1) % p.len()];
+        let (da, db) = (n.dot(a) - offset, n.dot(b) - offset);
+        if da <= 0.0 {
+            out.push(a);
+        }
+        if da == 0.0 {
+            on_plane.push(a);
+        }
+        if (da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0) {
+            let x = a + (b - a) * (da / (da - db));
+            out.push(x);
+            on_plane.push(x);
+        }
+    }
+    out
+}
+
+/// Points on a plane with unit normal `n`, ordered by angle about their
+/// centroid: a convex polygon's vertices in order.
+fn in_order(n: DVec3, mut points: Vec<DVec3>) -> Vec<DVec3> {
     let centre = points.iter().sum::<DVec3>() / points.len() as f64;
     let u = n.any_orthonormal_vector();
     let v = n.cross(u);
     let angle = |p: &DVec3| (*p - centre).dot(v).atan2((*p - centre).dot(u));
     points.sort_by(|p, q| angle(p).total_cmp(&angle(q)));
-    let twice: DVec3 = (0..points.len())
-        .map(|i| (points[i] - centre).cross(points[(i + 1) % points.len()] - centre))
-        .sum();
-    0.5 * twice.dot(n).abs()
+    points
 }

@@ -250,6 +250,39 @@ fn kdop_exact_shapes() {
     assert_eq!(k.aabb(), Aabb::new(Vec3::splat(3.0), Vec3::splat(3.0)));
 }
 
+/// Long and thin tetrahedra, aspect 1 to 1e12 (a 1 x 1 x 1e9 one once had a
+/// 6-DOP volume of -0 and a 26-DOP volume above its box's): every k-DOP's
+/// volume lies between the tetrahedron's, which it holds, and its box's,
+/// which holds it; the 6-DOP's is the box's.
+#[test]
+fn kdop_volumes_at_extreme_aspect_ratios() {
+    fn check<const N: usize>(p: &[Vec3], tetra: f64, aabb: f64) {
+        let v = Kdop::<N>::fit(p).unwrap().volume() as f64;
+        let what = format!("{}-DOP of {p:?}", 2 * N);
+        assert!(v > 0.0 && v >= tetra * (1.0 - 1e-6), "{what}: {v} below {tetra}");
+        assert!(v <= aabb * (1.0 + 1e-6), "{what}: {v} above its box's {aabb}");
+        if N == 3 {
+            assert!((v - aabb).abs() <= 1e-6 * aabb, "{what}: {v} vs {aabb}");
+        }
+    }
+    for e in 0..=12 {
+        let a = 10f32.powi(e);
+        // Long, flat, and a needle.
+        for size in
+            [Vec3::new(1.0, 1.0, a), Vec3::new(1.0, 1.0, 1.0 / a), Vec3::new(1.0 / a, 1.0 / a, 1.0)]
+        {
+            let p = [Vec3::ZERO, size.x * Vec3::X, size.y * Vec3::Y, size.z * Vec3::Z];
+            let box_ = Aabb::fit(&p).unwrap();
+            let e = box_.max.as_dvec3() - box_.min.as_dvec3();
+            let (aabb, tetra) = (e.x * e.y * e.z, e.x * e.y * e.z / 6.0);
+            check::<3>(&p, tetra, aabb);
+            check::<7>(&p, tetra, aabb);
+            check::<9>(&p, tetra, aabb);
+            check::<13>(&p, tetra, aabb);
+        }
+    }
+}
+
 #[test]
 fn simple_volumes_and_areas() {
     let s = Sphere::new(Vec3::ONE, 2.0);
