@@ -3,9 +3,10 @@
 
 use std::sync::Arc;
 
+use bvol_narrow::Contact;
 use bvol_volumes::{Aabb, Obb, Pose, Sphere};
 
-use crate::event::ContactEvent;
+use crate::event::{ContactEvent, EventKind};
 use crate::{BodyId, BodyKind, Shape};
 
 /// How many bodies ahead the placing of world bounds asks for the slots it
@@ -88,7 +89,20 @@ impl Bodies {
 
     /// The end of the contact of the bodies in slots `a` and `b`.
     pub(crate) fn ended(&self, a: u32, b: u32) -> ContactEvent {
-        ContactEvent::ended(self.id_of(a), self.id_of(b))
+        self.event(EventKind::Ended, a, b, None)
+    }
+
+    /// The event of kind `kind` of the bodies in slots `a` and `b`, with
+    /// their handles and user data now.
+    pub(crate) fn event(
+        &self,
+        kind: EventKind,
+        a: u32,
+        b: u32,
+        contact: Option<Contact>,
+    ) -> ContactEvent {
+        let (user_data_a, user_data_b) = (self.user_data[a as usize], self.user_data[b as usize]);
+        ContactEvent { kind, a: self.id_of(a), b: self.id_of(b), user_data_a, user_data_b, contact }
     }
 
     /// The handle of the body in `slot` now.

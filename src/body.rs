@@ -114,6 +114,13 @@ pub enum WorldError {
     },
     /// The world holds as many bodies as a tree can name.
     Full,
+    /// A [`WorldConfig`](crate::WorldConfig) asked for a thread pool of no
+    /// threads or more than [`MAX_THREADS`](crate::WorldConfig::MAX_THREADS),
+    /// or one the system could not start.
+    BadThreads {
+        /// The number of threads asked for.
+        threads: usize,
+    },
 }
 
 impl fmt::Display for WorldError {
@@ -132,6 +139,12 @@ impl fmt::Display for WorldError {
                 write!(f, "set_poses: {bodies} bodies but {poses} poses")
             }
             WorldError::Full => write!(f, "the world is full: too many bodies"),
+            WorldError::BadThreads { threads } => write!(
+                f,
+                "WorldConfig::threads: a pool of {threads} threads could not be started \
+                 (from 1 to {} are allowed)",
+                crate::WorldConfig::MAX_THREADS
+            ),
         }
     }
 }

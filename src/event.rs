@@ -15,8 +15,9 @@ pub enum EventKind {
     Ended,
 }
 
-/// A contact event: the two bodies (`a` before `b` by slot) and, unless it
-/// ended, how they touch, the normal pointing from `a` to `b`.
+/// A contact event: the two bodies (`a` before `b` by slot) with their user
+/// data, and, unless it ended, how they touch, the normal pointing from `a`
+/// to `b`.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct ContactEvent {
     /// What happened.
@@ -25,13 +26,10 @@ pub struct ContactEvent {
     pub a: BodyId,
     /// The other body.
     pub b: BodyId,
+    /// `a`'s user data (see [`BodyDesc::with_user_data`](crate::BodyDesc::with_user_data)).
+    pub user_data_a: u64,
+    /// `b`'s user data: for a body removed since, the value it had.
+    pub user_data_b: u64,
     /// The contact: `None` for an ended pair.
     pub contact: Option<Contact>,
-}
-
-impl ContactEvent {
-    /// The end of a pair's contact.
-    pub(crate) fn ended(a: BodyId, b: BodyId) -> Self {
-        ContactEvent { kind: EventKind::Ended, a, b, contact: None }
-    }
 }

@@ -33,6 +33,14 @@
 //! # Ok::<(), Box<dyn std::error::Error>>(())
 //! ```
 //!
+//! Bodies touch when their shapes overlap or meet: touching exactly, a
+//! contact of depth 0, counts (rapier, for one, does not count it).
+//! [`World::contacts`] lists the pairs touching at the last update, with
+//! their contacts, and [`World::contact`] answers for one pair.
+//!
+//! The vectors and quaternions are [`glam`]'s, re-exported as `bvol::glam`
+//! so that a user's glam is the one bvol was built with.
+//!
 //! The parts are crates of their own, re-exported here: [`volumes`] (bounding
 //! volumes, fitting, the convex hull), [`tree`] (the dynamic tree) and
 //! [`narrow`] (the separating-axis tests). Fitting alone:
@@ -54,6 +62,7 @@
 mod bodies;
 mod body;
 mod broadphase;
+mod config;
 mod event;
 mod limits;
 mod mesh;
@@ -70,7 +79,9 @@ pub use bvol_narrow as narrow;
 pub use bvol_narrow::{Capsule, HullPart, MassProperties, Part};
 pub use bvol_tree as tree;
 pub use bvol_volumes as volumes;
+pub use config::WorldConfig;
 pub use event::{ContactEvent, EventKind};
+pub use glam;
 pub use limits::{MAX_COORDINATE, ROTATION_LENGTH_SQUARED};
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
 pub use shape::{FitOptions, Shape, ShapeError};

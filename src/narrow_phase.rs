@@ -46,6 +46,8 @@ pub(crate) struct PairState {
 /// this frame's: one merge pass moves each pair's state into the spare
 /// buffer, where the test reads and updates it in place (a state is moved
 /// once a frame). `spare` and `runs` are buffers kept from frame to frame.
+/// Also returns the touching pairs it kept untested (both bodies resting),
+/// sorted.
 pub(crate) fn narrow_phase(
     bodies: &Bodies,
     pairs: &[(u32, u32)],
@@ -53,7 +55,7 @@ pub(crate) fn narrow_phase(
     spare: &mut PairStates,
     runs: &mut Vec<Vec<ContactEvent>>,
     events: &mut Vec<ContactEvent>,
-) -> usize {
+) -> (usize, Vec<(u32, u32)>) {
     let mut next = std::mem::take(spare);
     let left = carry_over(states, pairs, &mut next);
     // Pairs no longer candidates that touched have ended, unless both
@@ -72,6 +74,7 @@ pub(crate) fn narrow_phase(
     } else {
         test_in_runs(bodies, &mut next, pairs, &ended, runs, events)
     };
+    let kept_keys = kept.iter().map(|&(key, _)| key).collect();
     if !kept.is_empty() {
         // Two sorted runs: the stable sort merges them in one pass.
         next.extend(kept);
@@ -82,7 +85,7 @@ pub(crate) fn narrow_phase(
     }
     // Last frame's buffer, emptied by the merge, serves the next frame.
     *spare = std::mem::replace(states, next);
-    touching
+    (touching, kept_keys)
 }
 
 /// Last frame's pair states (sorted by key) matched with this frame's
@@ -159,6 +162,7 @@ fn test_run(
         if let Some(&(_, later)) = ahead.get(k + AHEAD) {
             prefetch(&bodies.poses[later as usize]);
             prefetch(&bodies.shapes[later as usize]);
+            prefetch(&bodies.user_data[later as usize]);
         }
         let contact = collide(bodies, a, b, state);
         let was = state.touching;
@@ -173,7 +177,7 @@ fn test_run(
         while let Some(&gone) = ended.next_if(|&&key| key < (a, b)) {
             events.push(bodies.ended(gone.0, gone.1));
         }
-        events.push(ContactEvent { kind, a: bodies.id_of(a), b: bodies.id_of(b), contact });
+        events.push(bodies.event(kind, a, b, contact));
     }
     events.extend(ended.map(|&(a, b)| bodies.ended(a, b)));
     touching

@@ -37,7 +37,20 @@ impl<B: Broadphase> World<B> {
     /// [`events`](World::events) and [`stats`](World::stats) hold its result.
     /// The same world and poses give the same events in the same order on
     /// any number of threads.
+    ///
+    /// It runs on the world's own thread pool when its
+    /// [`WorldConfig::threads`](crate::WorldConfig::threads) names one, and
+    /// on rayon's current pool otherwise.
     pub fn update(&mut self) -> &FrameStats {
+        match self.pool.clone() {
+            Some(pool) => pool.install(|| self.run_frame()),
+            None => self.run_frame(),
+        }
+        &self.stats
+    }
+
+    /// The frame of [`update`](Self::update), on the current pool.
+    fn run_frame(&mut self) {
         let mut stats = FrameStats::default();
         let start = Instant::now();
         let moved = self.place_bounds();
@@ -51,7 +64,8 @@ impl<B: Broadphase> World<B> {
         self.bodies.dirty = moved;
         self.bodies.dirty.clear();
         self.candidates(&mut scratch.found);
-        let Scratch { found, near, nearer, starts, sorted, states, runs, .. } = &mut scratch;
+        let Scratch { found, near, nearer, starts, sorted, states, runs, events: last, .. } =
+            &mut scratch;
         stats.candidates = found.len();
         let t2 = Instant::now();
         stats.broadphase_time = t2 - t;
@@ -72,15 +86,24 @@ impl<B: Broadphase> World<B> {
         // Sorted for the narrow phase's merge with last frame's states here,
         // where the fewest pairs are left.
         sort_by_slot(nearer, bodies.shapes.len(), starts, sorted);
-        let mut events = std::mem::take(&mut self.events);
+        let mut events = std::mem::take(last);
         events.clear();
         events.append(&mut self.orphaned);
-        stats.touching = narrow_phase(bodies, sorted, &mut self.pairs, states, runs, &mut events);
-        self.events = events;
+        let (touching, kept) =
+            narrow_phase(bodies, sorted, &mut self.pairs, states, runs, &mut events);
+        stats.touching = touching;
+        // A kept pair touched at the last update: its contact is among that
+        // update's events or its kept contacts.
+        let rested = kept.into_iter().filter_map(|(a, b)| {
+            let (a, b) = (bodies.id_of(a), bodies.id_of(b));
+            Some(((a.index, b.index), self.last_contact(a, b)?))
+        });
+        let rested = rested.collect();
+        self.rested = rested;
+        *last = std::mem::replace(&mut self.events, events);
         self.scratch = scratch;
         stats.narrow_time = t4.elapsed();
         self.stats = stats;
-        &self.stats
     }
 
     /// Places the world sphere, OBB and leaf box of every live body moved

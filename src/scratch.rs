@@ -6,7 +6,7 @@ use crate::event::ContactEvent;
 use crate::narrow_phase::PairStates;
 
 /// Buffers that one frame fills and the next refills: their contents are
-/// never read across frames. A frame of many bodies fills tens of MB of
+/// never read across frames (but for `events`, last frame's events). A frame of many bodies fills tens of MB of
 /// them, and fresh pages would cost a page fault each, every frame.
 #[derive(Debug, Default)]
 pub(crate) struct Scratch {
@@ -28,4 +28,8 @@ pub(crate) struct Scratch {
     pub(crate) states: PairStates,
     /// The narrow phase's events of each run of pairs, on several threads.
     pub(crate) runs: Vec<Vec<ContactEvent>>,
+    /// The events' other buffer: a frame writes its events here while it
+    /// reads last frame's (the contacts of the pairs it keeps untested),
+    /// then swaps the two.
+    pub(crate) events: Vec<ContactEvent>,
 }

@@ -5,12 +5,15 @@
 
 use std::sync::Arc;
 
+use bvol_narrow::Contact;
 use bvol_tree::Tree;
 use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere, prefetch};
 use glam::Vec3;
+use rayon::{ThreadPool, ThreadPoolBuilder};
 
 use crate::bodies::{BODIES_AHEAD, Bodies};
 use crate::broadphase::Broadphase;
+use crate::config::WorldConfig;
 use crate::event::ContactEvent;
 use crate::limits::placeable;
 use crate::narrow_phase::PairStates;
@@ -40,6 +43,11 @@ use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
 /// # Ok::<(), Box<dyn std::error::Error>>(())
 /// ```
 ///
+/// Two bodies touch when their shapes overlap or meet: touching exactly, a
+/// contact of depth 0, counts (rapier, for one, does not count it).
+/// [`contacts`](World::contacts) lists the pairs touching at the last
+/// update and [`contact`](World::contact) answers for one pair.
+///
 /// Its broadphase is the dynamic tree unless another is named:
 /// `World::<BruteForce>::default()` tests every pair (see [`Broadphase`]).
 #[derive(Debug, Default)]
@@ -55,19 +63,46 @@ pub struct World<B: Broadphase = Tree<Aabb>> {
     /// Pairs that touched and lost a body since the last update.
     pub(crate) orphaned: Vec<ContactEvent>,
     pub(crate) events: Vec<ContactEvent>,
+    /// The contacts of the touching pairs kept untested at the last update
+    /// (both bodies resting), by `(lower slot, higher slot)`, sorted: the
+    /// touching pairs are these and those of the events.
+    pub(crate) rested: Vec<((u32, u32), Contact)>,
+    pub(crate) config: WorldConfig,
+    /// The thread pool of `config.threads`, if it names one.
+    pub(crate) pool: Option<Arc<ThreadPool>>,
     pub(crate) stats: FrameStats,
     /// The buffers of a frame's lists, kept from frame to frame.
     pub(crate) scratch: Scratch,
 }
 
 impl World {
-    /// An empty world, its broadphase the dynamic tree.
+    /// An empty world, its broadphase the dynamic tree, with the default
+    /// [`WorldConfig`].
     pub fn new() -> Self {
         Self::default()
+    }
+
+    /// An empty world set up by `config`, its broadphase the dynamic tree;
+    /// its own thread pool, if `config` names one, started now.
+    pub fn with_config(config: WorldConfig) -> Result<Self, WorldError> {
+        let pool = match config.threads {
+            None => None,
+            Some(threads @ 1..=WorldConfig::MAX_THREADS) => {
+                let pool = ThreadPoolBuilder::new().num_threads(threads).build();
+                Some(Arc::new(pool.map_err(|_| WorldError::BadThreads { threads })?))
+            }
+            Some(threads) => return Err(WorldError::BadThreads { threads }),
+        };
+        Ok(World { config, pool, ..Self::default() })
     }
 }
 
 impl<B: Broadphase> World<B> {
+    /// How the world was set up.
+    pub fn config(&self) -> &WorldConfig {
+        &self.config
+    }
+
     /// Number of bodies.
     pub fn len(&self) -> usize {
         self.bodies.count
@@ -123,6 +158,7 @@ impl<B: Broadphase> World<B> {
         for (a, b) in orphaned {
             self.orphaned.push(self.bodies.ended(a, b));
         }
+        self.rested.retain(|&((a, b), _)| a != id.index && b != id.index);
         let b = &mut self.bodies;
         b.filtering -= usize::from(b.filters(id.index));
         b.shapes[i] = None;
@@ -294,6 +330,85 @@ impl<B: Broadphase> World<B> {
     /// ended, ordered by the bodies' slots.
     pub fn events(&self) -> &[ContactEvent] {
         &self.events
+    }
+
+    /// Every pair of bodies touching at the last update, with its contact
+    /// (the normal from the first body to the second), ordered by the
+    /// bodies' slots, the lower slot first: those tested (whose events
+    /// began or persist) and those kept untested because both bodies rest,
+    /// with the contact they had when last tested. A pair that lost a body
+    /// since is left out. Touching includes touching exactly: a contact of
+    /// depth 0.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use bvol::glam::{Quat, Vec3};
+    /// use bvol::volumes::Pose;
+    /// use bvol::{BodyDesc, Shape, World};
+    ///
+    /// let mut world = World::new();
+    /// let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5))?);
+    /// let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY))?;
+    /// let b = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::X * 0.9, Quat::IDENTITY)))?;
+    /// world.update();
+    /// let touching: Vec<_> = world.contacts().map(|(a, b, _)| (a, b)).collect();
+    /// assert_eq!(touching, [(a, b)]);
+    /// let contact = world.contact(b, a)?.expect("they overlap");
+    /// assert!(contact.normal.x < -0.99); // from b to a
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn contacts(&self) -> impl Iterator<Item = (BodyId, BodyId, Contact)> + '_ {
+        let key = |p: &(BodyId, BodyId, Contact)| (p.0.index, p.1.index);
+        let mut tested = self.events.iter().filter_map(|e| Some((e.a, e.b, e.contact?))).peekable();
+        let mut rested = self
+            .rested
+            .iter()
+            .map(|&((a, b), c)| (self.bodies.id_of(a), self.bodies.id_of(b), c))
+            .peekable();
+        // Two sorted lists of distinct pairs, merged.
+        let merged = std::iter::from_fn(move || match (tested.peek(), rested.peek()) {
+            (Some(t), Some(r)) if key(r) < key(t) => rested.next(),
+            (Some(_), _) => tested.next(),
+            (None, _) => rested.next(),
+        });
+        merged.filter(|&(a, b, _)| self.live(a) && self.live(b))
+    }
+
+    /// How bodies `a` and `b` touched at the last update (as
+    /// [`contacts`](Self::contacts) has it), the normal pointing from `a` to
+    /// `b` whichever of them has the lower slot; `None` if they did not
+    /// touch.
+    pub fn contact(&self, a: BodyId, b: BodyId) -> Result<Option<Contact>, WorldError> {
+        self.slot(a)?;
+        self.slot(b)?;
+        if a.index <= b.index {
+            return Ok(self.last_contact(a, b));
+        }
+        // The points lie midway between the surfaces: only the normal turns.
+        let flip = |mut c: Contact| {
+            c.normal = -c.normal;
+            c
+        };
+        Ok(self.last_contact(b, a).map(flip))
+    }
+
+    /// The contact of the pair of bodies `a` and `b` (`a` in the lower
+    /// slot) at the last update, if they touched: among its events (those
+    /// of these very bodies: a removed body's slot may be held by another
+    /// since) or its kept contacts.
+    pub(crate) fn last_contact(&self, a: BodyId, b: BodyId) -> Option<Contact> {
+        let key = (a.index, b.index);
+        let from = self.events.partition_point(|e| (e.a.index, e.b.index) < key);
+        let tested = self.events[from..]
+            .iter()
+            .take_while(|e| (e.a.index, e.b.index) == key)
+            .filter(|e| e.a == a && e.b == b)
+            .find_map(|e| e.contact);
+        let rested = || {
+            let k = self.rested.binary_search_by_key(&key, |&(k, _)| k).ok()?;
+            Some(self.rested[k].1)
+        };
+        tested.or_else(rested)
     }
 
     /// The counts and times of the last update's stages.
