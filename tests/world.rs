@@ -4,16 +4,16 @@
 //! ray casts find the nearest body, bad input is a typed error, and the
 //! result does not depend on the number of threads.
 
-use std::collections::BTreeSet;
+use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use bvol::narrow::{WarmStart, collide_parts};
+use bvol::narrow::{Contact, WarmStart, collide_parts};
 use bvol::volumes::Aabb;
 use bvol::volumes::{Pose, Ray};
 use bvol::{
     BodyDesc, BodyId, BodyKind, Broadphase, BruteForce, ContactEvent, EventKind, FitOptions,
-    MeshProblem, Shape, ShapeError, World, WorldError,
+    MeshProblem, Shape, ShapeError, World, WorldConfig, WorldError,
 };
 use glam::{Quat, Vec3, Vec4};
 use proptest::prelude::*;
@@ -123,10 +123,15 @@ fn touch(world: &World, a: BodyId, b: BodyId) -> bool {
 /// A random world of `n` bodies in a cube dense enough for about one
 /// contact a body, a tenth of them static.
 fn random_world(n: usize, seed: u64) -> (World, Vec<BodyId>, SmallRng) {
+    random_world_with(n, seed, WorldConfig::default())
+}
+
+/// [`random_world`], set up by `config`.
+fn random_world_with(n: usize, seed: u64, config: WorldConfig) -> (World, Vec<BodyId>, SmallRng) {
     let mut rng = SmallRng::seed_from_u64(seed);
     let shapes = shapes();
     let side = (n as f32).cbrt() * 1.6;
-    let mut world = World::new();
+    let mut world = World::with_config(config).unwrap();
     let mut ids = Vec::new();
     for k in 0..n {
         let shape = shapes[rng.random_range(0..shapes.len())].clone();
@@ -270,43 +275,103 @@ fn obb_stage_removes_candidates_the_tree_lets_through() {
 fn same_events_on_one_and_two_threads() {
     let run = |threads: usize| {
         let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
-        pool.install(|| {
-            let (mut world, ids, mut rng) = random_world(3000, 6);
-            let sleepers: Vec<BodyId> = ids
-                .iter()
-                .copied()
-                .filter(|&id| id.index() % 2 == 0 && world.kind(id).unwrap() == BodyKind::Dynamic)
-                .collect();
-            let mut all = Vec::new();
-            let mut persisting_on_waking = 0;
-            for f in 0..7 {
-                let kind = match f {
-                    3 => BodyKind::Sleeping,
-                    5 => BodyKind::Dynamic,
-                    _ => world.kind(sleepers[0]).unwrap(),
-                };
-                sleepers.iter().for_each(|&id| world.set_kind(id, kind).unwrap());
-                world.update();
-                all.extend_from_slice(world.events());
-                if f == 5 {
-                    let both =
-                        |e: &ContactEvent| sleepers.contains(&e.a) && sleepers.contains(&e.b);
-                    persisting_on_waking = world
-                        .events()
-                        .iter()
-                        .filter(|e| e.kind == EventKind::Persisting && both(e))
-                        .count();
-                }
-                step(&mut world, &ids, &mut rng);
-            }
-            (all, persisting_on_waking)
-        })
+        pool.install(|| sleepers_scene(WorldConfig::default()))
     };
     let (one, two) = (run(1), run(2));
     assert!(one.0.len() > 1000);
     // Pairs of sleepers kept their contact while asleep.
     assert!(one.1 > 10, "{} kept pairs woke touching", one.1);
     assert_eq!(one, two);
+}
+
+/// The events of [`same_events_on_one_and_two_threads`]'s scene, a world
+/// set up by `config`, where half the bodies fall asleep and wake; and how
+/// many pairs of sleepers woke touching.
+fn sleepers_scene(config: WorldConfig) -> (Vec<ContactEvent>, usize) {
+    let (mut world, ids, mut rng) = random_world_with(3000, 6, config);
+    let sleepers: Vec<BodyId> = ids
+        .iter()
+        .copied()
+        .filter(|&id| id.index() % 2 == 0 && world.kind(id).unwrap() == BodyKind::Dynamic)
+        .collect();
+    let mut all = Vec::new();
+    let mut persisting_on_waking = 0;
+    for f in 0..7 {
+        let kind = match f {
+            3 => BodyKind::Sleeping,
+            5 => BodyKind::Dynamic,
+            _ => world.kind(sleepers[0]).unwrap(),
+        };
+        sleepers.iter().for_each(|&id| world.set_kind(id, kind).unwrap());
+        world.update();
+        all.extend_from_slice(world.events());
+        if f == 5 {
+            let both = |e: &ContactEvent| sleepers.contains(&e.a) && sleepers.contains(&e.b);
+            persisting_on_waking = world
+                .events()
+                .iter()
+                .filter(|e| e.kind == EventKind::Persisting && both(e))
+                .count();
+        }
+        step(&mut world, &ids, &mut rng);
+    }
+    (all, persisting_on_waking)
+}
+
+/// A world's own pool of one or two threads gives the events of rayon's
+/// pool, the default.
+#[test]
+fn own_thread_pools_give_the_default_events() {
+    let default = sleepers_scene(WorldConfig::default());
+    assert!(default.0.len() > 1000 && default.1 > 10);
+    for threads in [1, 2] {
+        assert_eq!(sleepers_scene(WorldConfig { threads: Some(threads) }), default, "{threads}");
+    }
+}
+
+#[test]
+fn bad_thread_counts_are_typed_errors() {
+    assert_eq!(World::new().config(), &WorldConfig::default());
+    assert_eq!(WorldConfig::default().threads, None);
+    let one = WorldConfig { threads: Some(1) };
+    assert_eq!(World::with_config(one).unwrap().config(), &one);
+    for threads in [0, WorldConfig::MAX_THREADS + 1, usize::MAX] {
+        let got = World::with_config(WorldConfig { threads: Some(threads) });
+        assert_eq!(got.err(), Some(WorldError::BadThreads { threads }));
+    }
+}
+
+/// A pair that falls asleep touching is still listed, with the contact it
+/// had when last tested, until a body moves it apart; its contact is the
+/// event's, and reversing the bodies turns the normal.
+#[test]
+fn contacts_list_resting_pairs_with_their_last_contact() {
+    let mut world = World::new();
+    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
+    let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY)).unwrap();
+    let b = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::Y * 0.99, Quat::IDENTITY))).unwrap();
+    world.update();
+    let began = world.events()[0].contact.unwrap();
+    let listed = |w: &World| w.contacts().collect::<Vec<_>>();
+    assert_eq!(listed(&world), [(a, b, began)]);
+    world.set_kind(a, BodyKind::Sleeping).unwrap();
+    world.set_kind(b, BodyKind::Sleeping).unwrap();
+    for _ in 0..3 {
+        world.update();
+        assert!(world.events().is_empty());
+        assert_eq!(listed(&world), [(a, b, began)], "kept asleep");
+        assert_eq!(world.contact(a, b), Ok(Some(began)));
+        let reversed = world.contact(b, a).unwrap().unwrap();
+        assert_eq!((reversed.normal, reversed.depth), (-began.normal, began.depth));
+    }
+    world.set_kind(b, BodyKind::Dynamic).unwrap();
+    world.set_pose(b, Pose::new(Vec3::Y * 3.0, Quat::IDENTITY)).unwrap();
+    world.update();
+    assert_eq!(listed(&world), []);
+    assert_eq!(world.contact(b, a), Ok(None));
+    world.remove_body(a).unwrap();
+    assert_eq!(world.contact(a, b), Err(WorldError::UnknownBody(a)));
+    assert_eq!(world.contact(b, a), Err(WorldError::UnknownBody(a)));
 }
 
 /// The nearest of `ids` that `ray` meets within `max_t`, by brute force:
@@ -718,20 +783,28 @@ proptest! {
         let place = |p: Pose| Pose::new(at(p.position), p.rotation);
         let mut world = World::new();
         let mut model = Model::default();
+        // Each body's user data, distinct, kept after it is removed.
+        let mut users = BTreeMap::new();
         for op in ops {
             let pick = |k: usize, model: &Model| model.live[k % model.live.len()].0;
             match op {
                 Op::Add { shape, pose, kind, filter } => {
                     let (layers, mask) = FILTERS[filter];
                     let desc = BodyDesc::new(shapes[shape % shapes.len()].clone(), place(pose));
-                    let id = world.add_body(desc.with_kind(KINDS[kind]).with_filter(layers, mask));
-                    model.live.push((id.unwrap(), (layers, mask)));
+                    let data = 1_000_003 * users.len() as u64 + 17;
+                    let desc = desc.with_kind(KINDS[kind]).with_filter(layers, mask);
+                    let id = world.add_body(desc.with_user_data(data)).unwrap();
+                    model.live.push((id, (layers, mask)));
+                    users.insert(id, data);
                 }
                 Op::Remove(k) if !model.live.is_empty() => {
                     let id = pick(k, &model);
                     world.remove_body(id).unwrap();
                     model.live.retain(|&(x, _)| x != id);
                     model.removed.push(id);
+                    prop_assert!(world.contacts().all(|(a, b, _)| a != id && b != id));
+                    let other = model.live.first().map_or(id, |&(x, _)| x);
+                    prop_assert_eq!(world.contact(other, id), Err(WorldError::UnknownBody(id)));
                 }
                 Op::SetKind(k, kind) if !model.live.is_empty() => {
                     world.set_kind(pick(k, &model), KINDS[kind]).unwrap();
@@ -769,6 +842,7 @@ proptest! {
                     let set: BTreeSet<_> = got.iter().copied().collect();
                     prop_assert_eq!(set.len(), got.len(), "an event twice");
                     prop_assert_eq!(set, model.expected(&world));
+                    check_contacts(&world, &model, &users)?;
                     let (from, to) = (at(from), at(to));
                     if let Some(ray) = (to - from).try_normalize().map(|d| Ray::new(from, d)) {
                         let ids = model.live.iter().map(|&(id, _)| id);
@@ -785,6 +859,44 @@ proptest! {
             }
         }
     }
+}
+
+/// After an update: `contacts()` lists, in slot order, exactly the pairs
+/// the model says touch; `contact(a, b)` is the event's contact for each
+/// pair tested (its normal turned when asked the other way round) and
+/// `Some` for exactly the model's touching pairs; each event carries the
+/// user data its bodies were given (the removed ones' included).
+fn check_contacts(
+    world: &World,
+    model: &Model,
+    users: &BTreeMap<BodyId, u64>,
+) -> Result<(), TestCaseError> {
+    let listed: Vec<(BodyId, BodyId, Contact)> = world.contacts().collect();
+    let key = |(a, b, _): &(BodyId, BodyId, Contact)| (a.index(), b.index());
+    prop_assert!(listed.windows(2).all(|w| key(&w[0]) < key(&w[1])), "out of order: {listed:?}");
+    let pairs: BTreeSet<(BodyId, BodyId)> = listed.iter().map(|&(a, b, _)| (a, b)).collect();
+    prop_assert_eq!(&pairs, &model.touching);
+    for &(a, b, c) in &listed {
+        prop_assert_eq!(world.contact(a, b), Ok(Some(c)));
+    }
+    for e in world.events() {
+        prop_assert_eq!((e.user_data_a, e.user_data_b), (users[&e.a], users[&e.b]));
+        if let Some(c) = e.contact {
+            prop_assert_eq!(world.contact(e.a, e.b), Ok(Some(c)));
+            let r = world.contact(e.b, e.a).unwrap().unwrap();
+            prop_assert_eq!((r.normal, r.depth, r.points()), (-c.normal, c.depth, c.points()));
+        }
+    }
+    for (i, &(x, _)) in model.live.iter().enumerate() {
+        prop_assert_eq!(world.user_data(x), Ok(users[&x]));
+        for &(y, _) in &model.live[i + 1..] {
+            let pair = if x.index() < y.index() { (x, y) } else { (y, x) };
+            let touching = model.touching.contains(&pair);
+            prop_assert_eq!(world.contact(x, y).unwrap().is_some(), touching);
+            prop_assert_eq!(world.contact(y, x).unwrap().is_some(), touching);
+        }
+    }
+    Ok(())
 }
 
 /// Applies one edit to `world`, whose live bodies are `live`, and returns
