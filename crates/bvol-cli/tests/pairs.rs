@@ -153,3 +153,24 @@ fn a_pile_that_comes_to_rest_is_left_with_a_fresh_tree() {
     let (cost, fresh) = (tree.sah_cost(), Tree::from_bounds(&resting).unwrap().sah_cost());
     assert!(cost <= fresh * 1.005, "resting tree's SAH cost {cost}, a fresh build's {fresh}");
 }
+
+/// Runs `bvol` and returns its exit code and standard error.
+fn bvol_err(args: &[&str]) -> (Option<i32>, String) {
+    let out = Command::new(env!("CARGO_BIN_EXE_bvol")).args(args).output().unwrap();
+    (out.status.code(), String::from_utf8(out.stderr).unwrap())
+}
+
+/// `--threads` beyond what an OS gives (5000 failed with a bare OS error,
+/// 100000 did not finish) or 0: a usage error naming the option and the
+/// range, from both benchmarks.
+#[test]
+fn threads_out_of_range_are_usage_errors() {
+    for bench in ["pairs", "world"] {
+        for threads in ["0", "1025", "5000", "100000", "-1", "many"] {
+            let arg = format!("--threads={threads}");
+            let (code, err) = bvol_err(&["bench", bench, "--n", "10", &arg]);
+            assert_eq!(code, Some(2), "{bench} --threads {threads}: {err}");
+            assert!(err.contains("--threads") && err.contains("from 1 to 1024"), "{err}");
+        }
+    }
+}

@@ -30,7 +30,7 @@ pub struct PairsArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Threads for pair finding and builds (the output is the same for any).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::threads)]
     threads: usize,
     /// Read the frames from a box-trace file instead of generating them.
     #[arg(long)]
@@ -76,9 +76,6 @@ struct Run {
 }
 
 pub fn run(args: PairsArgs) -> Result<(), String> {
-    if args.threads == 0 {
-        return Err("--threads must be at least 1".into());
-    }
     let (frames, n, count) = match &args.load {
         Some(path) => {
             let trace = BoxTrace::read(path).map_err(|e| format!("{}: {e}", path.display()))?;

@@ -31,7 +31,7 @@ pub struct WorldArgs {
     #[arg(long, default_value_t = 1)]
     seed: u64,
     /// Threads (the output is the same for any).
-    #[arg(long, default_value_t = 1)]
+    #[arg(long, default_value_t = 1, value_parser = super::threads)]
     threads: usize,
 }
 
@@ -42,8 +42,8 @@ const BODY_RADIUS: f32 = 0.75;
 const SPIN: f32 = 0.02;
 
 pub fn run(args: WorldArgs) -> Result<(), String> {
-    if args.threads == 0 || args.frames == 0 || args.n < 2 {
-        return Err("--threads and --frames must be at least 1, --n at least 2".into());
+    if args.frames == 0 || args.n < 2 {
+        return Err("--frames must be at least 1, --n at least 2".into());
     }
     let shape = match &args.shape {
         Some(path) => {

@@ -42,6 +42,19 @@ enum Bench {
     World(bench_world::WorldArgs),
 }
 
+/// The most threads `--threads` takes: rayon starts one OS thread each, and
+/// past a few thousand the OS refuses them or the pool takes minutes to start;
+/// no machine this tool runs on has anywhere near this many cores.
+const MAX_THREADS: usize = 1024;
+
+/// Parses `--threads`: a whole number in `1..=MAX_THREADS`.
+fn threads(arg: &str) -> Result<usize, String> {
+    match arg.parse::<usize>() {
+        Ok(k) if (1..=MAX_THREADS).contains(&k) => Ok(k),
+        _ => Err(format!("expected a whole number from 1 to {MAX_THREADS}")),
+    }
+}
+
 /// Runs a command; the error is one line for the user.
 pub fn run(args: Args) -> Result<(), String> {
     match args.command {
