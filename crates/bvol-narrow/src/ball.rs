@@ -2,10 +2,10 @@
 
 use std::f64::consts::PI;
 
-use bvol_volumes::{Aabb, Ray, Sphere};
-use glam::{DMat3, DVec3, Vec3};
+use bvol_volumes::{Aabb, Obb, Ray, Sphere};
+use glam::{DMat3, DVec3, Mat3, Vec3};
 
-use crate::{Body, MassProperties, NarrowError, PartKind};
+use crate::{Body, MassProperties, NarrowError, PartKind, ShapeError};
 
 impl PartKind for Sphere {
     fn local_bounds(&self) -> Aabb {
@@ -39,12 +39,37 @@ impl PartKind for Sphere {
         Some(*self)
     }
 
+    /// The ball, and its cube: no box holds a ball in less.
+    fn smallest_bounds(&self) -> Option<(Sphere, Obb)> {
+        let cube = Obb {
+            center: self.center,
+            axes: Mat3::IDENTITY,
+            half_extents: Vec3::splat(self.radius),
+        };
+        Some((*self, cube))
+    }
+
+    /// Its centre and radius scaled, by one factor on every axis.
+    fn scaled(&self, factor: Vec3) -> Result<Sphere, ShapeError> {
+        uniform(factor).map(|s| Sphere::new(self.center * s, self.radius * s))
+    }
+
     /// `4/3 π r³`, centred on the centre, `2/5 m r²` about every axis.
     fn mass_properties(&self) -> MassProperties {
         let r = f64::from(self.radius);
         let volume = 4.0 / 3.0 * PI * r.powi(3);
         let inertia = DMat3::from_diagonal(DVec3::splat(0.4 * volume * r * r));
         MassProperties::from_f64(volume, self.center.as_dvec3(), inertia)
+    }
+}
+
+/// The one factor of `factor` when its three are equal, as a round part
+/// needs: [`ShapeError::NonUniformScale`] otherwise.
+pub(crate) fn uniform(factor: Vec3) -> Result<f32, ShapeError> {
+    if factor.x == factor.y && factor.y == factor.z {
+        Ok(factor.x)
+    } else {
+        Err(ShapeError::NonUniformScale)
     }
 }
 

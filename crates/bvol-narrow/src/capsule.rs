@@ -3,12 +3,13 @@
 
 use std::f64::consts::PI;
 
-use bvol_volumes::{Aabb, Ray, Sphere};
-use glam::{DMat3, DVec2, DVec3, Vec3};
+use bvol_volumes::{Aabb, Obb, Ray, Sphere};
+use glam::{DMat3, DVec2, DVec3, Mat3, Vec3};
 
+use crate::ball::uniform;
 use crate::isometry::DIsometry3;
 use crate::segment::Segment;
-use crate::{Body, MassProperties, NarrowError, PartKind};
+use crate::{Body, MassProperties, NarrowError, PartKind, ShapeError};
 
 /// Two cores (or a core and a face) this close to parallel, as the sine of
 /// their angle, rest along a line: their contact takes a point at each end
@@ -174,6 +175,22 @@ impl PartKind for Capsule {
     fn enclosing_sphere(&self) -> Option<Sphere> {
         let [low, high] = self.end_balls();
         Some(low.merge(&high))
+    }
+
+    /// Its smallest sphere ([`enclosing_sphere`]) and its box: a box turned
+    /// off the capsule's axis must reach further across it to hold its caps.
+    ///
+    /// [`enclosing_sphere`]: PartKind::enclosing_sphere
+    fn smallest_bounds(&self) -> Option<(Sphere, Obb)> {
+        let Aabb { min, max } = self.local_bounds();
+        let half_extents = max.max(-min);
+        let obb = Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents };
+        self.enclosing_sphere().map(|sphere| (sphere, obb))
+    }
+
+    /// Its radius and core scaled, by one factor on every axis.
+    fn scaled(&self, factor: Vec3) -> Result<Capsule, ShapeError> {
+        uniform(factor).map(|s| Capsule::new(self.radius * s, self.half_height * s))
     }
 
     /// A cylinder of the core's length and two half balls, each of these

@@ -2,7 +2,8 @@
 
 use std::fmt;
 
-/// Why a [`Polyhedron`](crate::Polyhedron) could not be built.
+/// Why a [`Polyhedron`](crate::Polyhedron) could not be built, or a part
+/// scaled.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum ShapeError {
@@ -20,6 +21,9 @@ pub enum ShapeError {
     },
     /// A cuboid's half extents are not all finite and positive.
     BadHalfExtents,
+    /// A round part (a ball, a capsule) scaled by unequal factors along its
+    /// axes, which would make it another kind of solid.
+    NonUniformScale,
 }
 
 impl fmt::Display for ShapeError {
@@ -35,6 +39,9 @@ impl fmt::Display for ShapeError {
             ),
             ShapeError::BadHalfExtents => {
                 write!(f, "cuboid half extents must be finite and greater than zero")
+            }
+            ShapeError::NonUniformScale => {
+                write!(f, "a round part can only be scaled by one factor on every axis")
             }
         }
     }

@@ -1,11 +1,11 @@
 //! The hull kind of part: a convex polyhedron (the hull of a mesh object or
 //! of a primitive's corners).
 
-use bvol_volumes::{Aabb, ConvexHull, Ray, Sphere};
-use glam::{DMat3, DVec3, Vec3};
+use bvol_volumes::{Aabb, ConvexHull, Obb, Ray, Sphere};
+use glam::{DMat3, DVec3, Mat3, Vec3};
 
 use crate::mass::outer;
-use crate::{MassProperties, PartKind, Polyhedron};
+use crate::{MassProperties, PartKind, Polyhedron, ShapeError};
 
 /// A convex polyhedron part: the same solid twice, as each reader wants it.
 #[derive(Clone, Debug)]
@@ -68,6 +68,36 @@ impl PartKind for HullPart {
     /// None: a hull's sphere is fitted to its vertices.
     fn enclosing_sphere(&self) -> Option<Sphere> {
         None
+    }
+
+    /// For a box centred on the origin and square to its axes, itself and
+    /// the sphere through its corners (its diagonal is a diameter of any
+    /// sphere holding it; no box holds it in less than its own volume).
+    fn smallest_bounds(&self) -> Option<(Sphere, Obb)> {
+        let (half, _) = self.polyhedron.box_shape.as_ref()?;
+        // Rounded to nearest, then one step up: above the exact length.
+        let radius = (half.length() as f32).next_up();
+        let half_extents = half.as_vec3();
+        let obb = Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents };
+        Some((Sphere::new(Vec3::ZERO, radius), obb))
+    }
+
+    /// A box its half extents scaled, as [`Polyhedron::cuboid`] makes it;
+    /// any other hull rebuilt from its vertices scaled (an affine map keeps
+    /// a convex hull's vertices its vertices).
+    fn scaled(&self, factor: Vec3) -> Result<HullPart, ShapeError> {
+        let polyhedron = match &self.polyhedron.box_shape {
+            Some((half, _)) => Polyhedron::cuboid(half.as_vec3() * factor)?,
+            None => {
+                let vertices: Vec<Vec3> =
+                    self.polyhedron.vertices().iter().map(|&v| v * factor).collect();
+                Polyhedron::from_points(&vertices)?
+            }
+        };
+        // The polyhedron's vertices are finite and span a solid: what a hull
+        // of them needs.
+        let hull = ConvexHull::new(polyhedron.vertices()).map_err(|_| ShapeError::Empty)?;
+        Ok(HullPart { polyhedron, hull })
     }
 
     /// The exact integrals over the polyhedron, in f64: the solid cut into

@@ -1,9 +1,9 @@
 //! One convex part of a body, of any kind, each call handed to its kind.
 
-use bvol_volumes::{Aabb, Ray, Sphere};
+use bvol_volumes::{Aabb, Obb, Ray, Sphere};
 use glam::Vec3;
 
-use crate::{Capsule, HullPart, MassProperties, PartKind};
+use crate::{Capsule, HullPart, MassProperties, PartKind, ShapeError};
 
 /// One convex part of a body, in the body's frame: what the narrow phase
 /// tests, pair by pair of parts ([`collide_parts`](crate::collide_parts)).
@@ -80,6 +80,26 @@ impl Part {
             Part::Ball(ball) => ball.enclosing_sphere(),
             Part::Capsule(capsule) => capsule.enclosing_sphere(),
         }
+    }
+
+    /// The smallest sphere and box holding the part, where the kind knows
+    /// both in closed form ([`PartKind::smallest_bounds`]).
+    pub fn smallest_bounds(&self) -> Option<(Sphere, Obb)> {
+        match self {
+            Part::Hull(hull) => hull.smallest_bounds(),
+            Part::Ball(ball) => ball.smallest_bounds(),
+            Part::Capsule(capsule) => capsule.smallest_bounds(),
+        }
+    }
+
+    /// The part scaled by `factor` along its axes, about its frame's origin
+    /// ([`PartKind::scaled`]).
+    pub fn scaled(&self, factor: Vec3) -> Result<Part, ShapeError> {
+        Ok(match self {
+            Part::Hull(hull) => Part::Hull(Box::new(hull.scaled(factor)?)),
+            Part::Ball(ball) => Part::Ball(PartKind::scaled(ball, factor)?),
+            Part::Capsule(capsule) => Part::Capsule(capsule.scaled(factor)?),
+        })
     }
 
     /// Volume, centre of mass and inertia about it at unit density

@@ -1,9 +1,9 @@
 //! What every kind of part knows of itself, whatever it meets.
 
-use bvol_volumes::{Aabb, Ray, Sphere};
+use bvol_volumes::{Aabb, Obb, Ray, Sphere};
 use glam::Vec3;
 
-use crate::MassProperties;
+use crate::{MassProperties, ShapeError};
 
 /// What a world asks of a kind of convex part, in the part's own frame: its
 /// bounds, its support points, where a ray enters it, the points its
@@ -38,6 +38,22 @@ pub trait PartKind {
     /// rather than by a sphere fitted to [`fit_points`](Self::fit_points);
     /// `None` where it must be fitted.
     fn enclosing_sphere(&self) -> Option<Sphere>;
+
+    /// The smallest sphere and the smallest box holding the part where the
+    /// kind knows both in closed form (rounded up), so that a body of this
+    /// part alone, with the tightest fits asked for, takes them rather than
+    /// fitting its bounds to [`fit_points`](Self::fit_points); `None` where
+    /// they must be fitted.
+    fn smallest_bounds(&self) -> Option<(Sphere, Obb)>;
+
+    /// The part scaled by `factor` along its frame's axes, about its origin:
+    /// [`ShapeError::NonUniformScale`] for unequal factors where the kind
+    /// would no longer be itself (a ball would be an ellipsoid), the
+    /// polyhedron's errors where a hull scaled is not a solid. The factor is
+    /// the caller's to check (finite, positive, keeping the part in range).
+    fn scaled(&self, factor: Vec3) -> Result<Self, ShapeError>
+    where
+        Self: Sized;
 
     /// Volume, centre of mass and inertia about it at unit density.
     fn mass_properties(&self) -> MassProperties;
