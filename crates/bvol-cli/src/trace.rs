@@ -86,6 +86,12 @@ pub enum TraceError {
         /// The frame's.
         actual: usize,
     },
+    /// Frames of no boxes: nothing to replay, however many frames are
+    /// announced (a 16-byte file could otherwise ask for 2^32 - 1 of them).
+    NoBoxes {
+        /// Frames the header announced.
+        frames: usize,
+    },
     /// More boxes or frames than the format's 32-bit counts hold.
     TooMany {
         /// Boxes a frame.
@@ -119,6 +125,9 @@ impl fmt::Display for TraceError {
             TraceError::WrongCount { expected, actual } => {
                 write!(f, "a frame of {actual} boxes in a trace of {expected}")
             }
+            TraceError::NoBoxes { frames } => {
+                write!(f, "{frames} frames of no boxes: a trace needs at least one box")
+            }
             TraceError::TooMany { boxes, frames } => {
                 write!(f, "{boxes} boxes over {frames} frames: the format counts each in 32 bits")
             }
@@ -143,6 +152,22 @@ fn check_box(b: &Aabb, frame: usize, index: usize) -> Result<(), TraceError> {
         return Err(TraceError::MinAboveMax { frame, index });
     }
     Ok(())
+}
+
+/// The header's box and frame counts, once its magic, length and version
+/// are checked.
+fn header(bytes: &[u8]) -> Result<(u64, u64), TraceError> {
+    if bytes.len() < 4 || &bytes[..4] != MAGIC {
+        return Err(TraceError::BadMagic);
+    }
+    if bytes.len() < HEADER {
+        return Err(TraceError::Truncated { expected: HEADER as u64, actual: bytes.len() as u64 });
+    }
+    let word = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
+    if word(4) != VERSION {
+        return Err(TraceError::UnknownVersion(word(4)));
+    }
+    Ok((word(8).into(), word(12).into()))
 }
 
 impl BoxTrace {
@@ -195,20 +220,10 @@ impl BoxTrace {
 
     /// Parses a trace from its bytes, checking the layout and every box.
     pub fn from_bytes(bytes: &[u8]) -> Result<BoxTrace, TraceError> {
-        let word = |i: usize| u32::from_le_bytes(bytes[i..i + 4].try_into().expect("4 bytes"));
-        if bytes.len() < 4 || &bytes[..4] != MAGIC {
-            return Err(TraceError::BadMagic);
+        let (n, frames) = header(bytes)?;
+        if n == 0 && frames > 0 {
+            return Err(TraceError::NoBoxes { frames: frames as usize });
         }
-        if bytes.len() < HEADER {
-            return Err(TraceError::Truncated {
-                expected: HEADER as u64,
-                actual: bytes.len() as u64,
-            });
-        }
-        if word(4) != VERSION {
-            return Err(TraceError::UnknownVersion(word(4)));
-        }
-        let (n, frames) = (word(8) as u64, word(12) as u64);
         // In 128 bits: 24 n frames can pass 2^64, and wrapped it could match a
         // short file's length (then the boxes' vector, sized from the
         // header, could not be allocated).

@@ -174,3 +174,48 @@ fn threads_out_of_range_are_usage_errors() {
         }
     }
 }
+
+/// A trace file's bytes: the header, then `n * frames` unit boxes.
+fn trace_bytes(n: u32, frames: u32) -> Vec<u8> {
+    let mut bytes = b"BPHF\x01\0\0\0".to_vec();
+    bytes.extend_from_slice(&n.to_le_bytes());
+    bytes.extend_from_slice(&frames.to_le_bytes());
+    for _ in 0..n * frames {
+        for v in [0f32, 0.0, 0.0, 1.0, 1.0, 1.0] {
+            bytes.extend_from_slice(&v.to_le_bytes());
+        }
+    }
+    bytes
+}
+
+/// Traces the benchmark cannot run: a 16-byte header announcing 2^32 - 1
+/// frames of no boxes (which once reserved 32 GiB and aborted), one frame
+/// (no frame after the build to time), no frames. Each is a one-line error
+/// naming the file and the problem, at once.
+#[test]
+fn bench_pairs_refuses_traces_with_nothing_to_time() {
+    let dir = std::env::temp_dir().join(format!("bvol-pairs-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let cases = [
+        ("empty-frames.bphf", trace_bytes(0, u32::MAX), "no boxes"),
+        ("many-empty-frames.bphf", trace_bytes(0, 100_000_000), "no boxes"),
+        ("one-frame.bphf", trace_bytes(3, 1), "1 frames: the benchmark needs at least 2"),
+        ("no-frames.bphf", trace_bytes(3, 0), "0 frames"),
+    ];
+    for (name, bytes, problem) in cases {
+        let path = dir.join(name);
+        std::fs::write(&path, bytes).unwrap();
+        let started = std::time::Instant::now();
+        let (code, err) = bvol_err(&["bench", "pairs", "--load", path.to_str().unwrap()]);
+        assert!(started.elapsed().as_secs() < 10, "{name} took {:?}", started.elapsed());
+        assert_eq!(code, Some(2), "{name}: {err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(path.to_str().unwrap()) && err.contains(problem), "{err}");
+    }
+    // A generated scene says which option is wrong.
+    let (code, err) = bvol_err(&["bench", "pairs", "--n", "10", "--frames", "1"]);
+    assert!(code == Some(2) && err.contains("--frames: 1 frames"), "{err}");
+    let (code, err) = bvol_err(&["bench", "pairs", "--n", "0", "--frames", "3"]);
+    assert!(code == Some(2) && err.contains("--n: no boxes"), "{err}");
+    std::fs::remove_dir_all(dir).unwrap();
+}

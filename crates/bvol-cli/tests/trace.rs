@@ -180,3 +180,16 @@ proptest::proptest! {
         }
     }
 }
+
+/// Frames of no boxes: a 16-byte header announcing 2^32 - 1 of them is
+/// refused by the reader, not handed on to per-frame work.
+#[test]
+fn frames_of_no_boxes_are_refused() {
+    let mut bytes = b"BPHF\x01\0\0\0\0\0\0\0".to_vec();
+    bytes.extend_from_slice(&u32::MAX.to_le_bytes());
+    let e = BoxTrace::from_bytes(&bytes).unwrap_err();
+    assert!(matches!(e, TraceError::NoBoxes { frames } if frames == u32::MAX as usize), "{e}");
+    // No boxes and no frames is an empty trace, and reads back as one.
+    bytes[12..16].copy_from_slice(&0u32.to_le_bytes());
+    assert_eq!(BoxTrace::from_bytes(&bytes).unwrap(), BoxTrace::new(0));
+}

@@ -84,8 +84,18 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         }
         None => (Frames::Scene(Scene::new(args.scene, args.n, args.seed)), args.n, args.frames),
     };
-    if count == 0 {
-        return Err("no frames to run".into());
+    // Where the counts came from, for the errors: the trace file or the options.
+    let (of_frames, of_boxes) = match &args.load {
+        Some(path) => (path.display().to_string(), path.display().to_string()),
+        None => ("--frames".to_string(), "--n".to_string()),
+    };
+    if count < 2 {
+        return Err(format!(
+            "{of_frames}: {count} frames: the benchmark needs at least 2 (the first builds the tree)"
+        ));
+    }
+    if n == 0 {
+        return Err(format!("{of_boxes}: no boxes to run"));
     }
     let mut dump = match &args.dump {
         Some(path) => {
@@ -129,7 +139,9 @@ fn measure(
         frames: count,
         pairs: 0,
         build_ms: 0.0,
-        frame_ms: Vec::with_capacity(count),
+        // Grown frame by frame, not reserved from `count`: what a run may
+        // allocate is bounded by the frames it actually runs.
+        frame_ms: Vec::new(),
         update_ms: 0.0,
         digest: PairDigest::default(),
         bytes: 0,
@@ -177,15 +189,12 @@ fn measure(
 fn print(run: &Run, threads: usize, source: &str, events: bool) {
     let mut sorted = run.frame_ms.clone();
     sorted.sort_by(f64::total_cmp);
-    let median = match sorted.len() {
-        0 => f64::NAN,
-        k if k % 2 == 1 => sorted[k / 2],
-        k => 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]),
-    };
-    let mean =
-        if sorted.is_empty() { f64::NAN } else { sorted.iter().sum::<f64>() / sorted.len() as f64 };
+    // `run` refuses fewer than 2 frames: at least one frame after the build.
+    let k = sorted.len();
+    let median = if k % 2 == 1 { sorted[k / 2] } else { 0.5 * (sorted[k / 2 - 1] + sorted[k / 2]) };
+    let mean = sorted.iter().sum::<f64>() / k as f64;
     // The worst frame: where a rebuild or a burst of reinsertions shows.
-    let max = sorted.last().copied().unwrap_or(f64::NAN);
+    let max = sorted[k - 1];
     let update_mean = run.update_ms / sorted.len() as f64;
     let avg_pairs = run.pairs as f64 / run.frames as f64;
     let per_body = run.bytes as f64 / run.n.max(1) as f64;
