@@ -21,6 +21,9 @@ pub struct Mesh {
 pub enum MeshProblem {
     /// The file could not be read (missing, unreadable); the OS's reason.
     Read(String),
+    /// The path is not a regular file (a directory, a FIFO, a device such as
+    /// `/dev/zero`): such a file may block or never end.
+    NotAFile,
     /// The file is not text, so not an OBJ file.
     NotText,
     /// The OBJ parser rejected the file; its reason.
@@ -50,6 +53,7 @@ impl fmt::Display for MeshError {
         let path = self.path.display();
         match &self.problem {
             MeshProblem::Read(why) => write!(f, "{path}: cannot read: {why}"),
+            MeshProblem::NotAFile => write!(f, "{path}: not a regular file"),
             MeshProblem::NotText => write!(f, "{path}: not an OBJ file (not text)"),
             MeshProblem::Parse(why) => write!(f, "{path}: not a valid OBJ file: {why}"),
             MeshProblem::NoVertices => write!(f, "{path}: the mesh has no vertices"),
@@ -72,7 +76,11 @@ impl std::error::Error for MeshError {}
 pub fn load_obj(path: impl AsRef<Path>) -> Result<Vec<Mesh>, MeshError> {
     let path = path.as_ref();
     let error = |problem| MeshError { path: path.to_path_buf(), problem };
-    let bytes = std::fs::read(path).map_err(|e| error(MeshProblem::Read(e.to_string())))?;
+    let read = |e: std::io::Error| error(MeshProblem::Read(e.to_string()));
+    if !std::fs::metadata(path).map_err(read)?.is_file() {
+        return Err(error(MeshProblem::NotAFile));
+    }
+    let bytes = std::fs::read(path).map_err(read)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| error(MeshProblem::NotText))?;
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {

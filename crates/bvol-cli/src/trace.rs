@@ -92,6 +92,9 @@ pub enum TraceError {
         /// Frames the header announced.
         frames: usize,
     },
+    /// The path is not a regular file (a directory, a FIFO, a device such
+    /// as `/dev/zero`): such a file may block or never end.
+    NotAFile,
     /// More boxes or frames than the format's 32-bit counts hold.
     TooMany {
         /// Boxes a frame.
@@ -128,6 +131,7 @@ impl fmt::Display for TraceError {
             TraceError::NoBoxes { frames } => {
                 write!(f, "{frames} frames of no boxes: a trace needs at least one box")
             }
+            TraceError::NotAFile => write!(f, "not a regular file"),
             TraceError::TooMany { boxes, frames } => {
                 write!(f, "{boxes} boxes over {frames} frames: the format counts each in 32 bits")
             }
@@ -211,10 +215,23 @@ impl BoxTrace {
         Ok(())
     }
 
-    /// Reads a trace file.
+    /// Reads a trace file: a regular file, read no further than the length
+    /// its header implies, so that a file with a forged header or endless
+    /// trailing bytes costs no more memory than a well-formed one.
     pub fn read(path: impl AsRef<Path>) -> Result<BoxTrace, TraceError> {
+        let metadata = std::fs::metadata(path.as_ref())?;
+        if !metadata.is_file() {
+            return Err(TraceError::NotAFile);
+        }
+        let mut file = std::fs::File::open(path)?;
         let mut bytes = Vec::new();
-        std::fs::File::open(path)?.read_to_end(&mut bytes)?;
+        Read::by_ref(&mut file).take(HEADER as u64).read_to_end(&mut bytes)?;
+        let (n, frames) = header(&bytes)?;
+        let implied = (BOX_BYTES as u64).saturating_mul(n * frames).saturating_add(HEADER as u64);
+        if metadata.len() > implied {
+            return Err(TraceError::TrailingBytes { expected: implied, actual: metadata.len() });
+        }
+        file.take(implied - HEADER as u64).read_to_end(&mut bytes)?;
         BoxTrace::from_bytes(&bytes)
     }
 

@@ -219,3 +219,29 @@ fn bench_pairs_refuses_traces_with_nothing_to_time() {
     assert!(code == Some(2) && err.contains("--n: no boxes"), "{err}");
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// Paths that are not regular files (a directory, a FIFO nobody writes to,
+/// an endless device): refused at once, naming the file, not read until
+/// they end or memory runs out.
+#[test]
+fn non_regular_files_are_refused() {
+    let dir = std::env::temp_dir().join(format!("bvol-fifo-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let fifo = dir.join("fifo");
+    assert!(Command::new("mkfifo").arg(&fifo).status().unwrap().success());
+    for path in [fifo.to_str().unwrap(), "/dev/zero", dir.to_str().unwrap()] {
+        for args in [
+            vec!["bench", "pairs", "--load", path],
+            vec!["fit", path],
+            vec!["bench", "world", "--n", "10", "--shape", path],
+        ] {
+            let started = std::time::Instant::now();
+            let (code, err) = bvol_err(&args);
+            assert!(started.elapsed().as_secs() < 10, "{args:?}");
+            assert_eq!(code, Some(2), "{args:?}: {err}");
+            assert_eq!(err.lines().count(), 1, "{err}");
+            assert!(err.contains(path) && err.contains("not a regular file"), "{err}");
+        }
+    }
+    std::fs::remove_dir_all(dir).unwrap();
+}

@@ -193,3 +193,20 @@ fn frames_of_no_boxes_are_refused() {
     bytes[12..16].copy_from_slice(&0u32.to_le_bytes());
     assert_eq!(BoxTrace::from_bytes(&bytes).unwrap(), BoxTrace::new(0));
 }
+
+/// Reading a file stops at the length its header implies: trailing bytes
+/// are reported with the file's real length, without being read; a path
+/// that is not a regular file is refused before any read.
+#[test]
+fn reading_stops_at_the_header_length() {
+    let mut bytes = bytes_of(&sample_trace(3, 2));
+    bytes.resize(bytes.len() + (1 << 20), 0);
+    let path = std::env::temp_dir().join(format!("bvol-trailing-{}.bphf", std::process::id()));
+    std::fs::write(&path, &bytes).unwrap();
+    let e = BoxTrace::read(&path).unwrap_err();
+    let actual = bytes.len() as u64;
+    assert!(matches!(e, TraceError::TrailingBytes { expected: 160, actual: a } if a == actual));
+    std::fs::remove_file(path).unwrap();
+    assert!(matches!(BoxTrace::read("/dev/zero").unwrap_err(), TraceError::NotAFile));
+    assert!(matches!(BoxTrace::read(std::env::temp_dir()).unwrap_err(), TraceError::NotAFile));
+}
