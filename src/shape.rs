@@ -6,7 +6,9 @@ use std::fmt;
 use std::path::Path;
 
 use bvol_narrow::{Capsule, HullPart, MassProperties, Part, Polyhedron};
-use bvol_volumes::{BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod};
+use bvol_volumes::{
+    Aabb, BodyBounds, ConvexHull, FitError, Obb, ObbMethod, Ray, Sphere, SphereMethod,
+};
 use glam::Vec3;
 
 use crate::limits::{MAX_COORDINATE, within_limit};
@@ -44,6 +46,8 @@ impl Default for FitOptions {
 pub struct Shape {
     parts: Vec<Part>,
     bounds: BodyBounds,
+    /// How `bounds` were fitted, so that a scaled copy fits its own alike.
+    fit: FitOptions,
 }
 
 /// Why a shape could not be built.
@@ -74,6 +78,13 @@ pub enum ShapeError {
         /// The primitive.
         primitive: &'static str,
     },
+    /// A scale factor is not finite and positive on every axis, or would
+    /// take a part's coordinates beyond [`MAX_COORDINATE`] or shrink a part
+    /// to nothing in f32.
+    BadScale {
+        /// The factor asked for.
+        factor: Vec3,
+    },
     /// A point has a coordinate beyond [`MAX_COORDINATE`].
     OutOfRange {
         /// The part's name (the mesh object's, or the primitive's).
@@ -95,6 +106,11 @@ impl fmt::Display for ShapeError {
             ShapeError::BadSize { primitive } => write!(
                 f,
                 "{primitive}: sizes must be finite, greater than zero and at most {MAX_COORDINATE:e}"
+            ),
+            ShapeError::BadScale { factor } => write!(
+                f,
+                "scale factor {factor}: must be finite and greater than zero on every axis, \
+                 keeping every part within ±{MAX_COORDINATE:e} and of some size"
             ),
             ShapeError::OutOfRange { part, point } => {
                 write!(
@@ -207,6 +223,42 @@ impl Shape {
         Self::from_parts(self.parts.clone(), fit)
     }
 
+    /// The shape scaled by `factor` along its frame's axes, about its
+    /// origin: by one factor on every axis for any shape, by a factor per
+    /// axis for shapes of hulls (a cuboid stays a cuboid).
+    ///
+    /// An equal factor scales the bounds as they are, without fitting them
+    /// anew (a sphere or box that is smallest stays smallest); unequal
+    /// factors fit them anew with the shape's fit options. A factor not
+    /// finite and positive on every axis, or that takes a part beyond
+    /// [`MAX_COORDINATE`] or to nothing, is [`ShapeError::BadScale`]; a ball
+    /// or capsule with unequal factors is [`ShapeError::Part`] naming the
+    /// part by its index (`"part 2"`).
+    ///
+    /// ```
+    /// use bvol::Shape;
+    /// use glam::Vec3;
+    /// let plank = Shape::cuboid(Vec3::ONE)?.scaled(Vec3::new(2.0, 0.1, 0.5))?;
+    /// assert!((plank.obb().volume() - 0.8).abs() < 1e-5);
+    /// assert!(Shape::ball(1.0)?.scaled(Vec3::new(1.0, 2.0, 1.0)).is_err());
+    /// # Ok::<(), bvol::ShapeError>(())
+    /// ```
+    pub fn scaled(&self, factor: Vec3) -> Result<Shape, ShapeError> {
+        let bad = || ShapeError::BadScale { factor };
+        if !(factor.is_finite() && factor.cmpgt(Vec3::ZERO).all()) {
+            return Err(bad());
+        }
+        let parts = (0..self.parts.len())
+            .map(|i| scale_part(&self.parts[i], i, factor))
+            .collect::<Result<Vec<_>, _>>()?;
+        if factor.x == factor.y && factor.y == factor.z {
+            let bounds = scale_bounds(&self.bounds, factor.x);
+            Ok(Shape { parts, bounds, fit: self.fit })
+        } else {
+            Self::from_parts(parts, self.fit)
+        }
+    }
+
     /// The convex parts.
     pub fn parts(&self) -> &[Part] {
         &self.parts
@@ -243,17 +295,68 @@ impl Shape {
 
     /// The bounds of the parts' fit points, by the chosen methods. A lone
     /// part whose smallest sphere is known in closed form (a ball, a capsule)
-    /// is bounded by that sphere, whatever the method.
+    /// is bounded by that sphere, whatever the method; one whose smallest
+    /// sphere and box are both known (those and a box square to its axes)
+    /// takes both without fitting when the fits are the defaults, which aim
+    /// for the smallest.
     fn from_parts(parts: Vec<Part>, fit: FitOptions) -> Result<Shape, ShapeError> {
-        let points: Vec<Vec3> = parts.iter().flat_map(Part::fit_points).collect();
         let lone = match parts.as_slice() {
-            [part] => part.enclosing_sphere(),
+            [part] => Some(part),
             _ => None,
         };
-        let sphere = lone.map_or_else(|| Sphere::fit(&points, fit.sphere), Ok)?;
+        let smallest =
+            lone.filter(|_| fit == FitOptions::default()).and_then(Part::smallest_bounds);
+        if let Some((sphere, obb)) = smallest {
+            return Ok(Shape { parts, bounds: BodyBounds { sphere, obb }, fit });
+        }
+        let points: Vec<Vec3> = parts.iter().flat_map(Part::fit_points).collect();
+        let known = lone.and_then(Part::enclosing_sphere);
+        let sphere = known.map_or_else(|| Sphere::fit(&points, fit.sphere), Ok)?;
         let obb = Obb::fit(&points, fit.obb)?;
-        Ok(Shape { parts, bounds: BodyBounds { sphere, obb } })
+        Ok(Shape { parts, bounds: BodyBounds { sphere, obb }, fit })
     }
+}
+
+/// Part `index` of a shape scaled by `factor` (finite and positive), checked
+/// to stay within [`MAX_COORDINATE`] and of some size in f32.
+fn scale_part(part: &Part, index: usize, factor: Vec3) -> Result<Part, ShapeError> {
+    let Aabb { min, max } = part.local_bounds();
+    if !(within_limit(min * factor) && within_limit(max * factor)) {
+        return Err(ShapeError::BadScale { factor });
+    }
+    let scaled = part
+        .scaled(factor)
+        .map_err(|reason| ShapeError::Part { part: format!("part {index}"), reason })?;
+    let Aabb { min, max } = scaled.local_bounds();
+    if max.cmpgt(min).all() { Ok(scaled) } else { Err(ShapeError::BadScale { factor }) }
+}
+
+/// Bounds scaled by `s` about the origin, grown to hold what they held once
+/// scaled in f32: a product rounded to nearest is off by at most 2^-24 of
+/// itself, so a scaled point and the scaled centre each move by at most
+/// that of their distance from the origin, and that is at most the centre's
+/// distance plus the reach from it (a margin of four times that covers the
+/// f32 axes being unit to a few ulps).
+fn scale_bounds(bounds: &BodyBounds, s: f32) -> BodyBounds {
+    let s64 = f64::from(s);
+    let grown = |exact: f64, centre: Vec3, reach: f64| {
+        let drift = (2.0 * centre.as_dvec3().length() * s64 + reach) * 2f64.powi(-22);
+        // Rounded to nearest, then one step up: above the sum.
+        ((exact + drift) as f32).next_up()
+    };
+    let Sphere { center, radius } = bounds.sphere;
+    let reach = f64::from(radius) * s64;
+    let sphere = Sphere::new(center * s, grown(reach, center, reach));
+    let obb = bounds.obb;
+    let half = obb.half_extents.as_dvec3() * s64;
+    let reach = half.length();
+    let half_extents = Vec3::new(
+        grown(half.x, obb.center, reach),
+        grown(half.y, obb.center, reach),
+        grown(half.z, obb.center, reach),
+    );
+    let obb = Obb { center: obb.center * s, axes: obb.axes, half_extents };
+    BodyBounds { sphere, obb }
 }
 
 /// The convex part of a point set, named for errors.
