@@ -2,7 +2,7 @@
 //! oracles: the fitters run on the same points, shapes built directly at the
 //! scaled size, and the parts' surfaces sampled by their support points.
 
-use bvol::narrow::{Collision, Pose, WarmStart, collide_parts};
+use bvol::narrow::{Collision, Polyhedron, Pose, WarmStart, collide_parts};
 use bvol::volumes::{Obb, ObbMethod, Sphere, SphereMethod};
 use bvol::{FitOptions, Mesh, Part, Shape, ShapeError};
 use glam::{Quat, Vec3};
@@ -58,6 +58,15 @@ fn bounds_hold_vertices(shape: &Shape) -> bool {
         .all(|&p| shape.sphere().contains_point(p) && shape.obb().contains_point(p))
 }
 
+/// A short name of a shape's first part, for messages (a hull's debug form
+/// runs to pages).
+fn name(shape: &Shape) -> String {
+    match &shape.parts()[0] {
+        Part::Hull(hull) => format!("hull of {} vertices", hull.polyhedron.vertices().len()),
+        part => format!("{part:?}"),
+    }
+}
+
 /// `a` within `tolerance` of `b`, relative to `b`.
 fn close(a: f32, b: f32, tolerance: f32) -> bool {
     (a - b).abs() <= tolerance * b.abs()
@@ -105,13 +114,10 @@ fn random_points(rng: &mut SmallRng, n: usize) -> Vec<Vec3> {
         .collect()
 }
 
+/// A box of half extents `half` about `centre`, as a mesh object.
 fn box_mesh(name: &str, half: Vec3, centre: Vec3) -> Mesh {
-    let positions = (0..8)
-        .map(|i| {
-            let sign = Vec3::new((i & 1) as f32, ((i >> 1) & 1) as f32, (i >> 2) as f32) * 2.0;
-            centre + (sign - 1.0) * half
-        })
-        .collect();
+    let corners = Polyhedron::cuboid(half).unwrap();
+    let positions = corners.vertices().iter().map(|&v| v + centre).collect();
     Mesh { name: name.into(), positions, triangles: Vec::new() }
 }
 
@@ -134,7 +140,7 @@ fn primitives_closed_form_bounds_are_as_tight_as_fitted_ones_and_hold_them() {
             .enclosing_sphere()
             .unwrap_or_else(|| Sphere::fit(&points, SphereMethod::Exact).unwrap());
         let obb = Obb::fit(&points, ObbMethod::MinVolume).unwrap();
-        let what = format!("{part:?}");
+        let what = name(shape);
         assert!(shape.sphere().radius <= sphere.radius * (1.0 + 1e-6), "{what} sphere {sphere:?}");
         assert!(shape.obb().volume() <= obb.volume() * (1.0 + 1e-6), "{what} box {obb:?}");
         assert!(bounds_hold_parts(shape, &mut rng), "{what}");
@@ -158,7 +164,7 @@ fn a_uniformly_scaled_shape_is_the_shape_built_at_that_size() {
         ];
         for (shape, direct) in &cases {
             let scaled = shape.scaled(factor).unwrap();
-            let what = format!("{:?} by {s}", shape.parts()[0]);
+            let what = format!("{} by {s}", name(shape));
             assert_same_bounds(&scaled, direct, &what);
             assert!(bounds_hold_parts(&scaled, &mut rng), "{what}");
             assert!(bounds_hold_vertices(&scaled), "{what}");
@@ -250,7 +256,7 @@ fn bad_factors_are_typed_errors() {
             assert!(
                 matches!(got, Err(ShapeError::BadScale { factor: f }) if f.to_array().map(f32::to_bits) == factor.to_array().map(f32::to_bits)),
                 "{:?} by {factor}: {got:?}",
-                shape.parts()[0]
+                name(shape)
             );
         }
     }
@@ -260,7 +266,7 @@ fn bad_factors_are_typed_errors() {
     for shape in &shapes {
         for s in [1e-30, f32::MIN_POSITIVE, 1e-44] {
             if let Ok(speck) = shape.scaled(Vec3::splat(s)) {
-                assert!(bounds_hold_parts(&speck, &mut rng), "{:?} by {s}", shape.parts()[0]);
+                assert!(bounds_hold_parts(&speck, &mut rng), "{} by {s}", name(shape));
             }
         }
     }
