@@ -83,3 +83,36 @@ fn json_bounds_hold_every_vertex() {
         assert!(volume.is_finite() && volume > 0.0);
     }
 }
+
+/// Coordinates beyond `bvol::MAX_COORDINATE` are refused with a World's
+/// error, naming the file, the object and the vertex (near 3e38 they once
+/// gave `null` radii and volumes, exit 0); up to the limit, every number in
+/// the output is finite (volumes near 1e55 once printed `inf` and ratios
+/// NaN).
+#[test]
+fn fit_refuses_coordinates_beyond_the_worlds_limit() {
+    for z in ["-3e38", "1.1e18"] {
+        let obj = format!("o thing\nv 0 0 0\nv 1 0 0\nv 0 1 0\nv 0 0 {z}\nf 1 2 3 4\n");
+        let path = scratch(&format!("far{z}.obj"), obj.as_bytes());
+        let out = bvol(&["fit", "--json", path.to_str().unwrap()]);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        let world = bvol::ShapeError::OutOfRange { part: "thing".into(), point: 3 };
+        assert_eq!(err, format!("bvol: {}: {world}\n", path.display()));
+        assert!(out.stdout.is_empty());
+    }
+    let obj = "v 1e18 1e18 1e18\nv -1e18 0 0\nv 0 -1e18 0\nv 0 0 -1e18\nf 1 2 3 4\n";
+    let path = scratch("at-the-limit.obj", obj.as_bytes());
+    let out = bvol(&["fit", "--json", path.to_str().unwrap()]);
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    let rows: Vec<Value> = serde_json::from_slice(&out.stdout).unwrap();
+    for row in &rows {
+        for key in ["volume", "ratio"] {
+            let v = row[key].as_f64();
+            assert!(v.is_some_and(|v| v.is_finite() && v > 0.0), "{key} in {row}");
+        }
+    }
+    let table = bvol(&["fit", path.to_str().unwrap()]);
+    let text = String::from_utf8(table.stdout).unwrap();
+    assert!(!text.contains("inf") && !text.contains("NaN"), "{text}");
+}

@@ -72,9 +72,18 @@ impl Aabb {
     }
 
     /// Volume.
+    ///
+    /// In f32 it overflows to infinity past about 7e12 a side, well within
+    /// the coordinates a body may have: [`volume_f64`](Self::volume_f64)
+    /// does not.
     pub fn volume(&self) -> f32 {
+        self.volume_f64() as f32
+    }
+
+    /// Volume, in f64.
+    pub fn volume_f64(&self) -> f64 {
         let e = self.max.as_dvec3() - self.min.as_dvec3();
-        (e.x * e.y * e.z) as f32
+        e.x * e.y * e.z
     }
 
     /// Surface area.

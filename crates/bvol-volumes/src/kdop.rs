@@ -105,13 +105,20 @@ impl<const N: usize> Kdop<N> {
 
     /// Volume of the polytope: the sum over faces of area x distance from an
     /// interior point / 3 (the divergence theorem; Ericson 2005, 4.6).
+    ///
+    /// In f32 it overflows to infinity past about 7e12 a side, well within
+    /// the coordinates a body may have: [`volume_f64`](Self::volume_f64)
+    /// does not.
     pub fn volume(&self) -> f32 {
+        self.volume_f64() as f32
+    }
+
+    /// Volume of the polytope, in f64.
+    pub fn volume_f64(&self) -> f64 {
         let faces = self.faces();
         let vertices: Vec<DVec3> = faces.iter().flat_map(|f| f.polygon.iter().copied()).collect();
         let inner = vertices.iter().sum::<DVec3>() / vertices.len().max(1) as f64;
-        let volume: f64 =
-            faces.iter().map(|f| f.area() * f.normal.dot(f.polygon[0] - inner) / 3.0).sum();
-        volume as f32
+        faces.iter().map(|f| f.area() * f.normal.dot(f.polygon[0] - inner) / 3.0).sum()
     }
 
     /// Surface area of the polytope (a flat k-DOP counts both sides).

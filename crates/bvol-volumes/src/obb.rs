@@ -103,9 +103,18 @@ impl Obb {
     }
 
     /// Volume, `8 hx hy hz`.
+    ///
+    /// In f32 it overflows to infinity past about 7e12 a side, well within
+    /// the coordinates a body may have: [`volume_f64`](Self::volume_f64)
+    /// does not.
     pub fn volume(&self) -> f32 {
+        self.volume_f64() as f32
+    }
+
+    /// Volume, `8 hx hy hz`, in f64.
+    pub fn volume_f64(&self) -> f64 {
         let h = self.half_extents.as_dvec3();
-        (8.0 * h.x * h.y * h.z) as f32
+        8.0 * h.x * h.y * h.z
     }
 
     /// Surface area.

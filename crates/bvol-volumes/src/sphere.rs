@@ -50,9 +50,18 @@ impl Sphere {
     }
 
     /// Volume, `4/3 pi r^3`.
+    ///
+    /// In f32 it overflows to infinity past about 7e12 a side, well within
+    /// the coordinates a body may have: [`volume_f64`](Self::volume_f64)
+    /// does not.
     pub fn volume(&self) -> f32 {
+        self.volume_f64() as f32
+    }
+
+    /// Volume, `4/3 pi r^3`, in f64.
+    pub fn volume_f64(&self) -> f64 {
         let r = self.radius as f64;
-        (4.0 / 3.0 * std::f64::consts::PI * r * r * r) as f32
+        4.0 / 3.0 * std::f64::consts::PI * r * r * r
     }
 
     /// Surface area, `4 pi r^2`.

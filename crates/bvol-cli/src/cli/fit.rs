@@ -4,6 +4,7 @@ use std::path::Path;
 use std::time::{Duration, Instant};
 
 use bvol::volumes::{Aabb, FitError, Kdop, Obb, ObbMethod, Sphere, SphereMethod};
+use bvol::{MAX_COORDINATE, ShapeError};
 use glam::Vec3;
 use serde_json::{Value, json};
 
@@ -27,12 +28,25 @@ impl Fitted {
 
 pub fn run(path: &Path, as_json: bool) -> Result<(), String> {
     let meshes = bvol::load_obj(path).map_err(|e| e.to_string())?;
+    in_range(&meshes).map_err(|e| format!("{}: {e}", path.display()))?;
     let points: Vec<Vec3> = meshes.iter().flat_map(|m| m.positions.iter().copied()).collect();
     let fitted = fit_all(&points).map_err(|e| format!("{}: {e}", path.display()))?;
     if as_json {
         println!("{}", to_json(&fitted));
     } else {
         print_table(path, points.len(), &fitted);
+    }
+    Ok(())
+}
+
+/// The limit a [`bvol::World`] puts on coordinates, with its error: beyond
+/// it, bounds' sizes overflow f32 (a radius past 3e38 came out as `null`).
+fn in_range(meshes: &[bvol::Mesh]) -> Result<(), ShapeError> {
+    for m in meshes {
+        let beyond = |p: &Vec3| p.abs().cmpgt(Vec3::splat(MAX_COORDINATE)).any();
+        if let Some(point) = m.positions.iter().position(beyond) {
+            return Err(ShapeError::OutOfRange { part: m.name.clone(), point });
+        }
     }
     Ok(())
 }
@@ -47,7 +61,7 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
             kind: "sphere",
             method: m.to_string(),
             radius,
-            volume: s.volume() as f64,
+            volume: s.volume_f64(),
             micros,
             bound,
         });
@@ -58,7 +72,7 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
         kind: "aabb",
         method: "exact".into(),
         radius: None,
-        volume: b.volume() as f64,
+        volume: b.volume_f64(),
         micros,
         bound,
     });
@@ -73,7 +87,7 @@ fn fit_all(points: &[Vec3]) -> Result<Vec<Fitted>, FitError> {
             kind: "obb",
             method: m.to_string(),
             radius: None,
-            volume: o.volume() as f64,
+            volume: o.volume_f64(),
             micros,
             bound,
         });
@@ -93,7 +107,7 @@ fn kdop<const N: usize>(points: &[Vec3]) -> Result<Fitted, FitError> {
         "max": k.max.as_slice(),
     });
     let method = format!("{}-dop", 2 * N);
-    Ok(Fitted { kind: "kdop", method, radius: None, volume: k.volume() as f64, micros, bound })
+    Ok(Fitted { kind: "kdop", method, radius: None, volume: k.volume_f64(), micros, bound })
 }
 
 /// Runs a fitter repeatedly (at least 3 times, for about 20 ms) and returns its
