@@ -116,3 +116,38 @@ fn fit_refuses_coordinates_beyond_the_worlds_limit() {
     let text = String::from_utf8(table.stdout).unwrap();
     assert!(!text.contains("inf") && !text.contains("NaN"), "{text}");
 }
+
+/// `bench world --shape` errors say where and what: the file with the part
+/// (a part's error once named only the part); a mesh too small to scale to a
+/// body (coordinates near 1e-44 were once said to be NaN or infinite); a
+/// 1 x 1 x 1e13 tetrahedron, a solid in exact arithmetic, is flat at f32
+/// precision, and the error says so.
+#[test]
+fn bench_world_shape_errors_name_the_file_and_the_real_problem() {
+    let tetra = |x: &str, z: &str| {
+        format!("v 0 0 0\nv {x} 0 0\nv 0 {x} 0\nv 0 0 {z}\nf 1 2 3\nf 1 2 4\nf 1 3 4\nf 2 3 4\n")
+    };
+    let cases = [
+        ("tiny.obj", tetra("1e-44", "1e-44"), "too small to scale to a body"),
+        ("needle.obj", tetra("1", "1e13"), "at f32 precision the points span 1 dimension"),
+        ("flat.obj", "o sheet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".into(), "part \"sheet\""),
+    ];
+    for (name, obj, problem) in cases {
+        let path = scratch(name, obj.as_bytes());
+        let out = bvol(&[
+            "bench",
+            "world",
+            "--n",
+            "10",
+            "--frames",
+            "1",
+            "--shape",
+            path.to_str().unwrap(),
+        ]);
+        let err = String::from_utf8(out.stderr).unwrap();
+        assert_eq!(out.status.code(), Some(2), "{err}");
+        assert_eq!(err.lines().count(), 1, "{err}");
+        assert!(err.contains(path.to_str().unwrap()) && err.contains(problem), "{err}");
+        assert!(!err.contains("NaN or infinite"), "{err}");
+    }
+}

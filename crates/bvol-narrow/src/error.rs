@@ -35,7 +35,7 @@ impl fmt::Display for ShapeError {
             }
             ShapeError::Degenerate { dimension } => write!(
                 f,
-                "the points span {dimension} dimension(s), not a solid: a polyhedron needs 4 non-coplanar points"
+                "at f32 precision the points span {dimension} dimension(s) (points within 3 f32 epsilons of the shape's size of a line or plane count as on it), not a solid: a polyhedron needs 4 non-coplanar points"
             ),
             ShapeError::BadHalfExtents => {
                 write!(f, "cuboid half extents must be finite and greater than zero")

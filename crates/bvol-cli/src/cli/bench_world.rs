@@ -47,7 +47,11 @@ pub fn run(args: WorldArgs) -> Result<(), String> {
     }
     let shape = match &args.shape {
         Some(path) => {
-            scaled(&Shape::from_obj(path, FitOptions::default()).map_err(|e| e.to_string())?)?
+            // The mesh's own errors name the file; the shape's name a part.
+            let meshes = bvol::load_obj(path).map_err(|e| e.to_string())?;
+            let in_file = |e: String| format!("{}: {e}", path.display());
+            let shape = Shape::from_meshes(&meshes, FitOptions::default());
+            scaled(&shape.map_err(|e| in_file(e.to_string()))?).map_err(in_file)?
         }
         None => Shape::cuboid(Vec3::splat(BODY_RADIUS / 3f32.sqrt())).map_err(|e| e.to_string())?,
     };
@@ -65,6 +69,13 @@ pub fn run(args: WorldArgs) -> Result<(), String> {
 fn scaled(shape: &Shape) -> Result<Shape, String> {
     let s = shape.sphere();
     let k = BODY_RADIUS / s.radius;
+    if !k.is_finite() {
+        return Err(format!(
+            "the shape (bounding radius {:e}) is too small to scale to a body of radius \
+             {BODY_RADIUS} in f32",
+            s.radius
+        ));
+    }
     let meshes: Vec<bvol::Mesh> = shape
         .parts()
         .iter()
