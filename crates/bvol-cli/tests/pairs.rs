@@ -245,3 +245,15 @@ fn non_regular_files_are_refused() {
     }
     std::fs::remove_dir_all(dir).unwrap();
 }
+
+/// A dump that cannot be written (a full disk) is an error naming the
+/// file, not lost when the write buffer is dropped at exit.
+#[test]
+fn a_failed_dump_is_an_error_naming_the_file() {
+    for path in ["/dev/full", "/no/such/dir/dump.bphf"] {
+        let (code, err) =
+            bvol_err(&["bench", "pairs", "--n", "10", "--frames", "3", "--dump", path]);
+        assert_eq!(code, Some(2), "{path}: {err}");
+        assert!(err.starts_with(&format!("bvol: {path}: ")) && err.lines().count() == 1, "{err}");
+    }
+}

@@ -2,8 +2,8 @@
 //! recorded box trace, printed in the line format of ../shared/SCENE_FORMAT.md.
 
 use std::fs::File;
-use std::io::BufWriter;
-use std::path::PathBuf;
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
 use std::time::Instant;
 
 use bvol::tree::{PairSet, Tree};
@@ -29,7 +29,8 @@ pub struct PairsArgs {
     /// Seed of the generated scene.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Threads for pair finding and builds (the output is the same for any).
+    /// Threads for pair finding and builds, 1 to 1024 (the output is the
+    /// same for any).
     #[arg(long, default_value_t = 1, value_parser = super::threads)]
     threads: usize,
     /// Read the frames from a box-trace file instead of generating them.
@@ -58,6 +59,36 @@ impl Frames {
     }
 }
 
+/// The trace file `--dump` writes, and its path for the errors.
+struct Dump {
+    path: PathBuf,
+    writer: TraceWriter<BufWriter<File>>,
+}
+
+impl Dump {
+    fn create(path: &Path, n: usize, frames: usize) -> Result<Dump, String> {
+        let file = File::create(path).map_err(|e| in_file(path, e))?;
+        let writer = TraceWriter::new(BufWriter::new(file), n, frames);
+        Ok(Dump { path: path.to_path_buf(), writer: writer.map_err(|e| in_file(path, e))? })
+    }
+
+    fn write_frame(&mut self, boxes: &[Aabb]) -> Result<(), String> {
+        self.writer.write_frame(boxes).map_err(|e| in_file(&self.path, e))
+    }
+
+    /// Checks every frame was written and flushes the file: a write error
+    /// (a full disk) is reported here, not lost when the buffer is dropped.
+    fn finish(self) -> Result<(), String> {
+        let mut out = self.writer.finish().map_err(|e| in_file(&self.path, e))?;
+        out.flush().map_err(|e| in_file(&self.path, e))
+    }
+}
+
+/// An error about a file, for the user: its path, then what is wrong.
+fn in_file(path: &Path, e: impl std::fmt::Display) -> String {
+    format!("{}: {e}", path.display())
+}
+
 /// What one run measured.
 struct Run {
     n: usize,
@@ -78,7 +109,7 @@ struct Run {
 pub fn run(args: PairsArgs) -> Result<(), String> {
     let (frames, n, count) = match &args.load {
         Some(path) => {
-            let trace = BoxTrace::read(path).map_err(|e| format!("{}: {e}", path.display()))?;
+            let trace = BoxTrace::read(path).map_err(|e| in_file(path, e))?;
             let (n, count) = (trace.n(), trace.frames());
             (Frames::Trace(trace), n, count)
         }
@@ -98,10 +129,7 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         return Err(format!("{of_boxes}: no boxes to run"));
     }
     let mut dump = match &args.dump {
-        Some(path) => {
-            let file = File::create(path).map_err(|e| format!("{}: {e}", path.display()))?;
-            Some(TraceWriter::new(BufWriter::new(file), n, count).map_err(|e| e.to_string())?)
-        }
+        Some(path) => Some(Dump::create(path, n, count)?),
         None => None,
     };
     let pool = rayon::ThreadPoolBuilder::new()
@@ -109,8 +137,8 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         .build()
         .map_err(|e| e.to_string())?;
     let run = pool.install(|| measure(frames, n, count, args.events, &mut dump))?;
-    if let (Some(writer), Some(path)) = (dump, &args.dump) {
-        writer.finish().map_err(|e| format!("{}: {e}", path.display()))?;
+    if let Some(dump) = dump {
+        dump.finish()?;
     }
     print(
         &run,
@@ -126,7 +154,7 @@ fn measure(
     n: usize,
     count: usize,
     events: bool,
-    dump: &mut Option<TraceWriter<BufWriter<File>>>,
+    dump: &mut Option<Dump>,
 ) -> Result<Run, String> {
     let progress = ProgressBar::new(count as u64).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {eta} left").expect("template"),
@@ -150,8 +178,8 @@ fn measure(
     };
     for f in 0..count {
         let boxes = frames.frame(f);
-        if let Some(writer) = dump {
-            writer.write_frame(boxes).map_err(|e| e.to_string())?;
+        if let Some(dump) = dump {
+            dump.write_frame(boxes)?;
         }
         let started = Instant::now();
         if f == 0 {

@@ -30,7 +30,7 @@ pub struct WorldArgs {
     /// Seed of the scene.
     #[arg(long, default_value_t = 1)]
     seed: u64,
-    /// Threads (the output is the same for any).
+    /// Threads, 1 to 1024 (the output is the same for any).
     #[arg(long, default_value_t = 1, value_parser = super::threads)]
     threads: usize,
 }
