@@ -346,10 +346,7 @@ fn bad_thread_counts_are_typed_errors() {
 /// event's, and reversing the bodies turns the normal.
 #[test]
 fn contacts_list_resting_pairs_with_their_last_contact() {
-    let mut world = World::new();
-    let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
-    let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY)).unwrap();
-    let b = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::Y * 0.99, Quat::IDENTITY))).unwrap();
+    let (mut world, a, b) = stacked_cubes();
     world.update();
     let began = world.events()[0].contact.unwrap();
     let listed = |w: &World| w.contacts().collect::<Vec<_>>();
@@ -581,12 +578,18 @@ fn obj_files_load_or_give_typed_errors_naming_the_file() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
-#[test]
-fn resting_pairs_keep_their_contact_until_they_move() {
+/// Two unit cubes, dynamic, the second 0.99 above the first: they overlap.
+fn stacked_cubes() -> (World, BodyId, BodyId) {
     let mut world = World::new();
     let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5)).unwrap());
     let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY)).unwrap();
     let b = world.add_body(BodyDesc::new(cube, Pose::new(Vec3::Y * 0.99, Quat::IDENTITY))).unwrap();
+    (world, a, b)
+}
+
+#[test]
+fn resting_pairs_keep_their_contact_until_they_move() {
+    let (mut world, a, b) = stacked_cubes();
     let kinds = |w: &World| w.events().iter().map(|e| e.kind).collect::<Vec<_>>();
     world.update();
     assert_eq!(kinds(&world), [EventKind::Began]);
