@@ -64,7 +64,7 @@ impl<B: Broadphase> World<B> {
         self.bodies.dirty = moved;
         self.bodies.dirty.clear();
         self.candidates(&mut scratch.found);
-        let Scratch { found, near, nearer, starts, sorted, states, runs, events: last, .. } =
+        let Scratch { found, near, nearer, starts, sorted, states, runs, events: spare, .. } =
             &mut scratch;
         stats.candidates = found.len();
         let t2 = Instant::now();
@@ -86,7 +86,9 @@ impl<B: Broadphase> World<B> {
         // Sorted for the narrow phase's merge with last frame's states here,
         // where the fewest pairs are left.
         sort_by_slot(nearer, bodies.shapes.len(), starts, sorted);
-        let mut events = std::mem::take(last);
+        // Last frame's events stay where they are until the kept pairs'
+        // contacts are read from them.
+        let mut events = std::mem::take(spare);
         events.clear();
         events.append(&mut self.orphaned);
         let (touching, kept) =
@@ -100,7 +102,7 @@ impl<B: Broadphase> World<B> {
         });
         let rested = rested.collect();
         self.rested = rested;
-        *last = std::mem::replace(&mut self.events, events);
+        *spare = std::mem::replace(&mut self.events, events);
         self.scratch = scratch;
         stats.narrow_time = t4.elapsed();
         self.stats = stats;
