@@ -283,6 +283,26 @@ fn kdop_volumes_at_extreme_aspect_ratios() {
     }
 }
 
+/// A flat k-DOP 1e18 wide: its faces' areas round by about 1e20, which
+/// once gave a 14-DOP in the plane z = 0 a volume of 2.7e36. A flat
+/// polytope has no volume, whatever its width (found by random point sets
+/// at the coordinate limit).
+#[test]
+fn flat_kdops_at_the_coordinate_limit_have_no_volume() {
+    let p = [
+        Vec3::new(-3.1830683e17, 0.0, 0.0),
+        Vec3::new(4.2654774e-10, -1e18, 0.0),
+        Vec3::new(1e18, 0.0, 0.0),
+    ];
+    let volumes = [
+        Kdop6::fit(&p).unwrap().volume_f64(),
+        Kdop14::fit(&p).unwrap().volume_f64(),
+        Kdop18::fit(&p).unwrap().volume_f64(),
+        Kdop26::fit(&p).unwrap().volume_f64(),
+    ];
+    assert_eq!(volumes, [0.0; 4]);
+}
+
 #[test]
 fn simple_volumes_and_areas() {
     let s = Sphere::new(Vec3::ONE, 2.0);
