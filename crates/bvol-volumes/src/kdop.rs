@@ -251,9 +251,20 @@ fn clip(faces: Vec<Face>, n: DVec3, offset: f64) -> Vec<Face> {
 }
 
 /// One polygon clipped to `n . x <= offset`; the points on the plane (kept
-/// vertices and crossings of edges) are added to `on_plane`.
+/// vertices and crossings of edges) are added to `on_plane`, each once.
+///
+/// A vertex lies on several faces and an edge on two, so each face finds the
+/// same points: kept twice over, a flat or point-like polytope (every vertex
+/// on the plane) would double its vertices at every cut. A crossing is
+/// interpolated from the edge's inside end, whichever face walks it, so both
+/// faces find the same bits and one copy is kept.
 fn clip_polygon(p: &[DVec3], n: DVec3, offset: f64, on_plane: &mut Vec<DVec3>) -> Vec<DVec3> {
     let mut out = Vec::with_capacity(p.len() + 1);
+    let mut keep = |x: DVec3| {
+        if !on_plane.contains(&x) {
+            on_plane.push(x);
+        }
+    };
     for (i, &a) in p.iter().enumerate() {
         let b = p[(i + 1) % p.len()];
         let (da, db) = (n.dot(a) - offset, n.dot(b) - offset);
@@ -261,12 +272,14 @@ fn clip_polygon(p: &[DVec3], n: DVec3, offset: f64, on_plane: &mut Vec<DVec3>) -
             out.push(a);
         }
         if da == 0.0 {
-            on_plane.push(a);
+            keep(a);
         }
         if (da < 0.0 && db > 0.0) || (da > 0.0 && db < 0.0) {
-            let x = a + (b - a) * (da / (da - db));
+            let ((inner, d_in), (outer, d_out)) =
+                if da < 0.0 { ((a, da), (b, db)) } else { ((b, db), (a, da)) };
+            let x = inner + (outer - inner) * (d_in / (d_in - d_out));
             out.push(x);
-            on_plane.push(x);
+            keep(x);
         }
     }
     out
@@ -281,4 +294,36 @@ fn in_order(n: DVec3, mut points: Vec<DVec3>) -> Vec<DVec3> {
     let angle = |p: &DVec3| (*p - centre).dot(v).atan2((*p - centre).dot(u));
     points.sort_by(|p, q| angle(p).total_cmp(&angle(q)));
     points
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Points that make a degenerate 26-DOP: one point (every slab of zero
+    /// width, so every vertex of every face lies on each cutting plane) and a
+    /// flat square. Kept with every face that found them, the points on a
+    /// cut would double the polytope's vertices at each of the 20 cuts (24 x
+    /// 2^20 for one point; found by random point sets). By Euler's formula a
+    /// convex polytope with F faces has at most 3F - 6 edges, so its faces
+    /// list at most 6F - 12 vertices in all.
+    #[test]
+    fn degenerate_kdops_keep_few_vertices() {
+        let square = [Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::new(1.0, 1.0, 0.0)];
+        for p in [&[Vec3::new(2e6, 1e6, 1e6)][..], &[Vec3::new(0.0, 0.0, 1e6)], &square] {
+            let k = Kdop26::fit(p).unwrap();
+            let faces = k.faces();
+            let listed: usize = faces.iter().map(|f| f.polygon.len()).sum();
+            assert!(
+                listed + 12 <= 6 * faces.len(),
+                "{p:?}: {listed} vertices on {} faces",
+                faces.len()
+            );
+            let aabb = Aabb::fit(p).unwrap();
+            assert_eq!(k.aabb(), aabb, "{p:?}");
+            assert_eq!(k.volume_f64(), 0.0, "{p:?}");
+            let area = (aabb.max - aabb.min).x * (aabb.max - aabb.min).y * 2.0;
+            assert!((k.surface_area() - area).abs() <= 1e-6, "{p:?}: {}", k.surface_area());
+        }
+    }
 }
