@@ -40,14 +40,13 @@ pub(crate) struct PairState {
 /// The narrow phase of one frame: each of `pairs` (sorted by slot) tested,
 /// with its warm starts from last frame, and the events written after those
 /// already in `events` (the contacts of removed bodies, sorted in with the
-/// rest). Returns how many touch.
+/// rest). Returns how many touch, and the touching pairs it kept untested
+/// (both bodies resting), sorted.
 ///
 /// `states` holds last frame's pair states, sorted as `pairs` are, and gets
 /// this frame's: one merge pass moves each pair's state into the spare
 /// buffer, where the test reads and updates it in place (a state is moved
 /// once a frame). `spare` and `runs` are buffers kept from frame to frame.
-/// Also returns the touching pairs it kept untested (both bodies resting),
-/// sorted.
 pub(crate) fn narrow_phase(
     bodies: &Bodies,
     pairs: &[(u32, u32)],

@@ -32,8 +32,7 @@ const FILTER_AHEAD: usize = 16;
 impl<B: Broadphase> World<B> {
     /// Runs one frame: the bodies moved since the last update get their world
     /// bounds and broadphase leaves updated, candidate pairs come from the
-    /// broadphases,
-    /// and each stage passes on the pairs it cannot rule out. Then
+    /// broadphases, and each stage passes on the pairs it cannot rule out. Then
     /// [`events`](World::events) and [`stats`](World::stats) hold its result.
     /// The same world and poses give the same events in the same order on
     /// any number of threads.
