@@ -6,12 +6,7 @@ use std::ops::RangeInclusive;
 use bvol_volumes::Pose;
 use glam::Vec3;
 
-/// The largest magnitude a world takes for a coordinate: of a body's
-/// position, of a shape's vertex in its own frame, of a primitive's size.
-/// Within it every world bound, and every square and area of one, is finite
-/// in f32; beyond it a body's bounds could overflow and the body would be
-/// lost to the trees.
-pub const MAX_COORDINATE: f32 = 1e18;
+pub use bvol_volumes::MAX_COORDINATE;
 
 /// The squared lengths a body's rotation quaternion may have (it need not be
 /// a unit one). Within them the world bounds' f32 rotation, normalised in

@@ -14,6 +14,12 @@ pub enum ShapeError {
         /// Position of the offending point in the input slice.
         index: usize,
     },
+    /// The point at `index` has a coordinate beyond
+    /// [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE).
+    OutOfRange {
+        /// Position of the offending point in the input slice.
+        index: usize,
+    },
     /// The points do not span a solid: fewer than 4 of them are non-coplanar.
     Degenerate {
         /// Dimension of their hull: 0 (one point), 1 (a segment) or 2 (flat).
@@ -33,6 +39,11 @@ impl fmt::Display for ShapeError {
             ShapeError::NonFinite { index } => {
                 write!(f, "point {index} has a NaN or infinite coordinate")
             }
+            ShapeError::OutOfRange { index } => write!(
+                f,
+                "point {index} has a coordinate beyond ±{:e}",
+                bvol_volumes::MAX_COORDINATE
+            ),
             ShapeError::Degenerate { dimension } => write!(
                 f,
                 "at f32 precision the points span {dimension} dimension(s) (points within 3 f32 epsilons of the shape's size of a line or plane count as on it), not a solid: a polyhedron needs 4 non-coplanar points"

@@ -83,13 +83,15 @@ impl Polyhedron {
     /// The convex hull of the points, as a polyhedron.
     ///
     /// No points is [`ShapeError::Empty`]; a NaN or infinite coordinate is
-    /// [`ShapeError::NonFinite`]; points with fewer than 4 non-coplanar among
+    /// [`ShapeError::NonFinite`], one beyond
+    /// [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE) [`ShapeError::OutOfRange`]; points with fewer than 4 non-coplanar among
     /// them (to the hull's tolerance, about 1e-7 of their extent) are
     /// [`ShapeError::Degenerate`].
     pub fn from_points(points: &[Vec3]) -> Result<Polyhedron, ShapeError> {
         let hull = ConvexHull::new(points).map_err(|e| match e {
             FitError::Empty => ShapeError::Empty,
             FitError::NonFinite { index } => ShapeError::NonFinite { index },
+            FitError::OutOfRange { index } => ShapeError::OutOfRange { index },
         })?;
         Polyhedron::from_hull(&hull)
     }

@@ -14,6 +14,11 @@ pub enum FitError {
         /// Position of the offending point in the input slice.
         index: usize,
     },
+    /// The point at `index` has a coordinate beyond [`MAX_COORDINATE`].
+    OutOfRange {
+        /// Position of the offending point in the input slice.
+        index: usize,
+    },
 }
 
 impl fmt::Display for FitError {
@@ -23,18 +28,31 @@ impl fmt::Display for FitError {
             FitError::NonFinite { index } => {
                 write!(f, "point {index} has a NaN or infinite coordinate")
             }
+            FitError::OutOfRange { index } => {
+                write!(f, "point {index} has a coordinate beyond ±{MAX_COORDINATE:e}")
+            }
         }
     }
 }
 
 impl std::error::Error for FitError {}
 
-/// Checks a point set before fitting: not empty, every coordinate finite.
+/// The largest magnitude bvol takes for a coordinate: of a point to fit, of
+/// a body's position, of a shape's vertex in its own frame, of a primitive's
+/// size. Within it every bound, and every square and area of one, is finite
+/// in f32 (a radius fitted to points near 3e38 overflowed); beyond it a
+/// body's bounds could overflow and the body would be lost to the trees.
+pub const MAX_COORDINATE: f32 = 1e18;
+
+/// Checks a point set before fitting: not empty, every coordinate finite
+/// and within [`MAX_COORDINATE`]; the first point that is not is named.
 pub(crate) fn check_points(points: &[Vec3]) -> Result<(), FitError> {
     if points.is_empty() {
         return Err(FitError::Empty);
     }
-    match points.iter().position(|p| !p.is_finite()) {
+    let limit = Vec3::splat(MAX_COORDINATE);
+    match points.iter().position(|p| !p.abs().cmple(limit).all()) {
+        Some(index) if points[index].is_finite() => Err(FitError::OutOfRange { index }),
         Some(index) => Err(FitError::NonFinite { index }),
         None => Ok(()),
     }

@@ -101,7 +101,8 @@ impl ConvexHull {
     /// Builds the hull of a point set.
     ///
     /// Empty input is [`FitError::Empty`]; a NaN or infinite coordinate is
-    /// [`FitError::NonFinite`]. Any finite set gives a hull: solid, flat (all
+    /// [`FitError::NonFinite`], one beyond [`MAX_COORDINATE`](crate::MAX_COORDINATE)
+    /// [`FitError::OutOfRange`]. Any other set gives a hull: solid, flat (all
     /// points within [`tolerance`](Self::tolerance) of a plane), a segment, or
     /// one point.
     pub fn new(points: &[Vec3]) -> Result<ConvexHull, FitError> {

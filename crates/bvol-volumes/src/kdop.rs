@@ -51,10 +51,12 @@ impl<const N: usize> Kdop<N> {
     /// computed in f64 and rounded outward.
     pub fn fit(points: &[Vec3]) -> Result<Self, FitError> {
         crate::error::check_points(points)?;
-        Ok(Self::fit_f64(points.iter().map(|p| p.as_dvec3())))
+        Ok(Self::fit_f64(points.iter().map(|p| p.as_dvec3()), 0.0))
     }
 
-    fn fit_f64(points: impl Iterator<Item = DVec3>) -> Self {
+    /// The k-DOP of points known to within `slack` (a distance): each slab
+    /// widened by it before rounding outward.
+    fn fit_f64(points: impl Iterator<Item = DVec3>, slack: f64) -> Self {
         let dirs = Self::DIRECTIONS.map(as_dvec3);
         let (mut lo, mut hi) = ([f64::INFINITY; N], [f64::NEG_INFINITY; N]);
         for p in points {
@@ -64,7 +66,11 @@ impl<const N: usize> Kdop<N> {
                 hi[i] = hi[i].max(s);
             }
         }
-        Kdop { min: lo.map(down), max: hi.map(up) }
+        let widen = |i: usize| slack * dirs[i].length();
+        Kdop {
+            min: std::array::from_fn(|i| down(lo[i] - widen(i))),
+            max: std::array::from_fn(|i| up(hi[i] + widen(i))),
+        }
     }
 
     /// Whether `p` lies inside or on every slab (evaluated in f64).
@@ -94,13 +100,33 @@ impl<const N: usize> Kdop<N> {
     /// The k-DOP holding this one moved by a rigid pose. The slab directions
     /// are fixed in space, so a rotated k-DOP is fitted again, to its moved
     /// vertices.
+    ///
+    /// The vertices are found relative to the axis box's centre and moved in
+    /// f64, each step rounding at the scale of the largest coordinate: a
+    /// k-DOP 1e13 long keeps its 0.1-wide side only to about 1e-3. Each slab
+    /// is widened by a bound of that rounding (16 f64 epsilons of the
+    /// coordinates' scale, far below f32's own rounding of ordinary bounds),
+    /// so that the moved k-DOP holds what this one holds.
     pub fn transformed(&self, pose: &Pose) -> Self {
-        Self::fit_f64(self.vertices_f64().into_iter().map(|v| pose.apply_f64(v)))
+        let half = (0..3).map(|i| self.max[i] as f64 - self.min[i] as f64).fold(0.0, f64::max);
+        let scale =
+            self.centre().abs().max_element() + half + pose.position.abs().max_element() as f64;
+        let moved = self.vertices_f64().into_iter().map(|v| pose.apply_f64(v));
+        Self::fit_f64(moved, 16.0 * f64::EPSILON * scale)
     }
 
-    /// The tight box around the polytope, rounded outward.
+    /// The box of the axis slabs (the first three directions): it holds the
+    /// polytope, and is its tight box for a fitted, merged or transformed
+    /// k-DOP, whose axis slabs touch it. Read off the slabs rather than the
+    /// polytope's vertices, which, kept relative to the box's centre, lose
+    /// the narrow side's digits of a k-DOP 1e13 long and 0.1 wide. Empty
+    /// (min +inf, max -inf) where a slab is inverted.
     pub fn aabb(&self) -> Aabb {
-        Aabb::around_f64(&self.vertices_f64())
+        if (0..N).any(|i| self.min[i] > self.max[i]) {
+            return Aabb::around_f64(&[]);
+        }
+        let corner = |v: &[f32; N]| Vec3::new(v[0], v[1], v[2]);
+        Aabb::new(corner(&self.min), corner(&self.max))
     }
 
     /// Volume of the polytope: the sum over faces of area x distance from an
@@ -181,11 +207,22 @@ impl<const N: usize> Kdop<N> {
         faces
     }
 
-    /// The polytope's vertices, each once.
+    /// The polytope's vertices, each once. A polytope of no area (the k-DOP
+    /// of points on a line, or of one point) has no faces for the clipping
+    /// to keep: it is given by its axis box's corners, which hold it (and,
+    /// the axis slabs being tight to the points fitted, are its box).
     fn vertices_f64(&self) -> Vec<DVec3> {
         let c = self.centre();
+        let faces = self.faces();
+        let inverted = (0..N).any(|i| self.min[i] > self.max[i]);
+        if faces.is_empty() && !inverted {
+            let corner = |k: usize, i: usize| {
+                if k >> i & 1 == 0 { self.min[i] as f64 } else { self.max[i] as f64 }
+            };
+            return (0..8).map(|k| DVec3::new(corner(k, 0), corner(k, 1), corner(k, 2))).collect();
+        }
         let mut out: Vec<DVec3> = Vec::new();
-        for v in self.faces().iter().flat_map(|f| f.polygon.iter()) {
+        for v in faces.iter().flat_map(|f| f.polygon.iter()) {
             let v = *v + c;
             if !out.contains(&v) {
                 out.push(v);

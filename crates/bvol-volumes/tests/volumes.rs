@@ -487,3 +487,90 @@ fn aabb_and_kdop_fits_hold_the_real_meshes() {
         Err(bvol_volumes::FitError::NonFinite { index: 1 })
     ));
 }
+
+/// Found by the fit fuzz target: two points, one at f32's largest value,
+/// gave an exact sphere of infinite radius. Every fitter now refuses a
+/// coordinate beyond `MAX_COORDINATE`, naming the first such point, and at
+/// the limit itself gives finite bounds that hold every point.
+#[test]
+fn fitters_refuse_coordinates_beyond_the_limit_and_hold_points_at_it() {
+    use bvol_volumes::{ConvexHull, FitError, MAX_COORDINATE, ObbMethod, SphereMethod};
+    let beyond = [Vec3::ZERO, Vec3::new(1.0, 2.0, 3.0), Vec3::splat(f32::MAX)];
+    let refused = Err(FitError::OutOfRange { index: 2 });
+    for &m in SphereMethod::ALL {
+        assert_eq!(Sphere::fit(&beyond, m).map(|_| ()), refused, "{m}");
+    }
+    for &m in ObbMethod::ALL {
+        assert_eq!(Obb::fit(&beyond, m).map(|_| ()), refused, "{m}");
+    }
+    assert_eq!(Aabb::fit(&beyond).map(|_| ()), refused);
+    assert_eq!(Kdop26::fit(&beyond).map(|_| ()), refused);
+    assert_eq!(ConvexHull::new(&beyond).map(|_| ()), refused);
+    let nan_first = [Vec3::splat(f32::MAX), Vec3::NAN];
+    assert_eq!(Aabb::fit(&nan_first).map(|_| ()), Err(FitError::OutOfRange { index: 0 }));
+
+    let l = MAX_COORDINATE;
+    let at = [Vec3::splat(-l), Vec3::new(l, -l, l), Vec3::new(-l, l, l), Vec3::new(l, l, -l)];
+    for &m in SphereMethod::ALL {
+        let s = Sphere::fit(&at, m).unwrap();
+        assert!(s.radius.is_finite() && s.volume_f64().is_finite(), "{m}: {s:?}");
+        assert!(at.iter().all(|&p| s.contains_point(p)), "{m}");
+    }
+    for &m in ObbMethod::ALL {
+        let o = Obb::fit(&at, m).unwrap();
+        assert!(o.half_extents.is_finite() && o.volume_f64().is_finite(), "{m}: {o:?}");
+        assert!(at.iter().all(|&p| o.contains_point(p)), "{m}");
+    }
+}
+
+/// Found by the fit fuzz target: points on the line x = y = z gave a
+/// 26-DOP whose polytope is a segment, with no faces for the clipping to
+/// keep, so its box came out empty (min +inf, max -inf) and a transformed
+/// copy was empty too. The box holds the points, and a transformed k-DOP
+/// holds them moved (to their f32 rounding: the k-DOP is moved in f64).
+#[test]
+fn kdops_of_points_on_a_line_or_at_one_point_keep_their_extent() {
+    let line = [Vec3::splat(41.0948), Vec3::splat(-56.2883), Vec3::splat(3.0)];
+    let point = [Vec3::new(1.0, -2.0, 3.0)];
+    let pose = Pose::new(Vec3::new(5.0, -1.0, 2.0), Quat::from_rotation_y(0.7));
+    let near = |b: Aabb, p: Vec3| (b.min - 1e-4).cmple(p).all() && p.cmple(b.max + 1e-4).all();
+    for points in [&line[..], &point[..]] {
+        let moved: Vec<Vec3> = points.iter().map(|&p| pose.transform_point(p)).collect();
+        let (k6, k26) = (Kdop6::fit(points).unwrap(), Kdop26::fit(points).unwrap());
+        for (name, aabb, moved_aabb) in [
+            ("6-DOP", k6.aabb(), k6.transformed(&pose).aabb()),
+            ("26-DOP", k26.aabb(), k26.transformed(&pose).aabb()),
+        ] {
+            assert!(points.iter().all(|&p| aabb.contains_point(p)), "{name}: {aabb:?}");
+            assert!(moved.iter().all(|&p| near(moved_aabb, p)), "{name}: {moved_aabb:?}");
+        }
+        assert_eq!((k26.volume(), k26.surface_area()), (0.0, 0.0));
+    }
+}
+
+/// Found by the fit fuzz target: a flat 26-DOP 1.35e13 long and 0.19 wide.
+/// Its box, read off its vertices (kept relative to the box's centre, so to
+/// about 1e-3), cut 5e-4 off the narrow side and left a fitted point out;
+/// moved by a translation, it lost the point the same way. The box is now
+/// the axis slabs', and a moved k-DOP is widened by its rounding.
+#[test]
+fn long_thin_kdops_keep_their_narrow_side() {
+    let points = [
+        Vec3::new(-0.023, 0.11967187, 0.0),
+        Vec3::new(5.0, -1.3507912e13, 0.0),
+        Vec3::new(-0.069, 0.0, 0.0),
+    ];
+    let shift = DVec3::new(0.5, -2.0, 1.0);
+    let pose = Pose::new(shift.as_vec3(), Quat::IDENTITY);
+    let k = Kdop26::fit(&points).unwrap();
+    assert!(points.iter().all(|&p| k.aabb().contains_point(p)), "{:?}", k.aabb());
+    let moved = k.transformed(&pose);
+    for p in points {
+        let at = p.as_dvec3() + shift;
+        let inside = (0..13).all(|i| {
+            let s = DVec3::from(Kdop26::DIRECTIONS[i].map(f64::from)).dot(at);
+            moved.min[i] as f64 <= s && s <= moved.max[i] as f64
+        });
+        assert!(inside, "{p} moved is outside {moved:?}");
+    }
+}

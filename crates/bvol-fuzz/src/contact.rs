@@ -1,0 +1,119 @@
+//! Two parts and their poses, through the pair table.
+
+use arbitrary::{Result, Unstructured};
+use bvol::glam::{DVec3, Vec3};
+use bvol::narrow::{Collision, Pose, WarmStart, collide_parts};
+use bvol::{Part, Shape};
+
+use crate::checks::{finite, one_line_error, unit};
+use crate::floats;
+
+/// Most points of a hull part.
+const MAX_HULL_POINTS: usize = 24;
+
+/// Tests two parts `data` spells (boxes, balls, capsules, hulls of any
+/// points) at any poses, both ways round. An error is one line; an answer
+/// is finite, agrees with the parts' bounding spheres (apart beyond them
+/// means separated), and the other way round gives the same verdict unless
+/// the two are within rounding of touching.
+pub fn run(data: &[u8]) {
+    let u = &mut Unstructured::new(data);
+    let (Ok(a), Ok(b)) = (shape(u), shape(u)) else { return };
+    let (Ok(pose_a), Ok(pose_b)) = (pose(u), pose(u)) else { return };
+    let (a, b) = match (a, b) {
+        (Ok(a), Ok(b)) => (a, b),
+        (Err(e), _) | (_, Err(e)) => return one_line_error(&e.to_string(), None),
+    };
+    let (part_a, part_b) = (&a.parts()[0], &b.parts()[0]);
+    let forward = match collide_parts(part_a, &pose_a, part_b, &pose_b, &mut WarmStart::default()) {
+        Ok(c) => c,
+        Err(e) => return one_line_error(&e.to_string(), None),
+    };
+    let backward = collide_parts(part_b, &pose_b, part_a, &pose_a, &mut WarmStart::default())
+        .expect("the same pair the other way round is accepted");
+    let placed = [Placed::new(&a, part_a, &pose_a), Placed::new(&b, part_b, &pose_b)];
+    check(&forward, &placed);
+    check(&backward, &[placed[1], placed[0]]);
+    let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
+    let margin = |c: &Collision| match c {
+        Collision::Separated { distance, .. } => -(*distance as f64),
+        Collision::Touching(contact) => contact.depth as f64,
+    };
+    if margin(&forward) > slack || margin(&forward) < -slack {
+        let same = matches!(
+            (&forward, &backward),
+            (Collision::Separated { .. }, Collision::Separated { .. })
+                | (Collision::Touching(_), Collision::Touching(_))
+        );
+        assert!(
+            same || margin(&backward).abs() <= slack,
+            "{forward:?} one way, {backward:?} the other"
+        );
+    }
+}
+
+/// A part's bounding sphere and a point of it, in the world, in f64.
+#[derive(Clone, Copy)]
+struct Placed {
+    center: DVec3,
+    radius: f64,
+    point: DVec3,
+    /// Its size and distance from the origin: what rounding scales with.
+    scale: f64,
+}
+
+impl Placed {
+    fn new(shape: &Shape, part: &Part, pose: &Pose) -> Placed {
+        let place = |p: Vec3| pose.rotation_f64() * p.as_dvec3() + pose.position.as_dvec3();
+        let (center, radius) = (place(shape.sphere().center), shape.sphere().radius as f64);
+        let scale = radius + center.abs().max_element();
+        Placed { center, radius, point: place(part.support(Vec3::X)), scale }
+    }
+}
+
+fn check(c: &Collision, [a, b]: &[Placed; 2]) {
+    let gap = a.center.distance(b.center) - a.radius - b.radius;
+    let slack = 1e-4 * a.scale.max(b.scale);
+    match c {
+        Collision::Separated { axis, distance } => {
+            unit(*axis, "a separating axis");
+            assert!(distance.is_finite() && *distance > 0.0, "distance {distance}");
+            let bound = a.point.distance(b.point) + slack;
+            assert!((*distance as f64) <= bound, "distance {distance} past two points' {bound}");
+        }
+        Collision::Touching(contact) => {
+            assert!(gap <= slack, "touching, but the bounding spheres are {gap} apart");
+            unit(contact.normal, "a contact normal");
+            assert!(contact.depth.is_finite() && contact.depth >= 0.0, "depth {}", contact.depth);
+            assert!(!contact.points().is_empty(), "a contact without points");
+            for p in contact.points() {
+                finite(p.position, "a contact point");
+                assert!(p.depth.is_finite() && p.depth >= 0.0, "point depth {}", p.depth);
+                let reach = |s: &Placed| s.radius + contact.depth as f64 + slack;
+                let at = p.position.as_dvec3();
+                assert!(at.distance(a.center) <= reach(a), "contact point {at} far from A");
+                assert!(at.distance(b.center) <= reach(b), "contact point {at} far from B");
+            }
+        }
+    }
+}
+
+/// A box, ball, capsule or hull, of any size: the constructor's answer.
+fn shape(u: &mut Unstructured) -> Result<std::result::Result<Shape, bvol::ShapeError>> {
+    Ok(match u.int_in_range(0u8..=3)? {
+        0 => Shape::cuboid(Vec3::new(floats::size(u)?, floats::size(u)?, floats::size(u)?)),
+        1 => Shape::ball(floats::size(u)?),
+        2 => Shape::capsule(floats::size(u)?, floats::size(u)?),
+        _ => {
+            let n = u.int_in_range(1..=MAX_HULL_POINTS)?;
+            let scale = floats::size(u)?;
+            let points =
+                (0..n).map(|_| Ok(floats::position(u)? * scale)).collect::<Result<Vec<Vec3>>>()?;
+            Shape::convex(&points)
+        }
+    })
+}
+
+fn pose(u: &mut Unstructured) -> Result<Pose> {
+    Ok(Pose::new(floats::position(u)?, floats::rotation(u)?))
+}
