@@ -26,8 +26,7 @@ static ALLOC: CappedAlloc = CappedAlloc;
 /// bytes: the fitters, hulls and trees hold a few hundred bytes a point.
 const BASE_MEMORY: usize = 256 << 20;
 const BYTES_PER_INPUT_BYTE: usize = 4096;
-/// Time any input may take, plus [`TIME_PER_INPUT_BYTE`] for each byte.
-const BASE_TIME: Duration = Duration::from_secs(5);
+/// Time an input may take: its target's, plus this for each byte.
 const TIME_PER_INPUT_BYTE: Duration = Duration::from_micros(200);
 /// A target stops after this many failing inputs.
 const MAX_FAILURES: usize = 10;
@@ -145,7 +144,7 @@ fn fuzz(target: &'static Target, args: &Args) -> usize {
 /// Runs one input under the guards; false (and the input saved) if it fails.
 fn run_one(target: &'static Target, input: &[u8], save: bool) -> bool {
     *CURRENT.lock().unwrap() = save.then(|| (target.name, input.to_vec()));
-    let limit = BASE_TIME + TIME_PER_INPUT_BYTE * input.len() as u32;
+    let limit = target.time + TIME_PER_INPUT_BYTE * input.len() as u32;
     let now = EPOCH.get().expect("guards installed").elapsed();
     DEADLINE_MS.store((now + limit).as_millis() as u64, Relaxed);
     cap::allow(BASE_MEMORY + BYTES_PER_INPUT_BYTE * input.len());

@@ -1,7 +1,7 @@
 //! OBJ files, through the loader the CLI and `Shape::from_obj` use, and the
 //! shape built from what it accepts.
 
-use bvol::{FitOptions, Shape, load_obj};
+use bvol::{FitOptions, Part, Shape, load_obj};
 
 use crate::checks::{finite, one_line_error};
 
@@ -43,7 +43,9 @@ pub const DICTIONARY: &[&[u8]] = &[
 
 /// Loads `data` as an OBJ file. An error names the file in one line; what
 /// is accepted has finite vertices, faces that index them, and a shape
-/// (when it is a solid) whose sphere and box contain every vertex.
+/// (when it is a solid) whose sphere and box contain its hulls, so every
+/// vertex to within its hull's tolerance (a vertex that close outside a
+/// face counts as on it: `ConvexHull::tolerance`).
 pub fn run(data: &[u8]) {
     let path = crate::scratch::file("mesh.obj", data);
     let shown = path.display().to_string();
@@ -63,11 +65,19 @@ pub fn run(data: &[u8]) {
     let (sphere, obb) = (shape.sphere(), shape.obb());
     finite(sphere.center, "the shape's sphere");
     assert!(sphere.radius.is_finite(), "the shape's radius is {}", sphere.radius);
-    for p in meshes.iter().flat_map(|m| &m.positions) {
-        assert!(sphere.contains_point(*p), "{p} outside the shape's sphere {sphere:?}");
-        assert!(obb.contains_point(*p), "{p} outside the shape's box {obb:?}");
+    for (m, part) in meshes.iter().zip(shape.parts()) {
+        let Part::Hull(hull) = part else { panic!("a mesh gave a part that is not a hull") };
+        let tolerance = hull.hull.tolerance();
+        for &p in &m.positions {
+            let out = sphere.center.as_dvec3().distance(p.as_dvec3()) - sphere.radius as f64;
+            assert!(out <= tolerance, "{p} is {out} outside the shape's sphere {sphere:?}");
+            let local = obb.axes.as_dmat3().transpose() * (p.as_dvec3() - obb.center.as_dvec3());
+            let out = (local.abs() - obb.half_extents.as_dvec3()).max_element();
+            assert!(out <= tolerance, "{p} is {out} outside the shape's box {obb:?}");
+        }
     }
     let mass = shape.mass_properties();
     assert!(mass.volume.is_finite() && mass.volume >= 0.0, "volume {}", mass.volume);
     finite(mass.center, "the centre of mass");
+    assert!(mass.inertia.is_finite(), "the inertia");
 }

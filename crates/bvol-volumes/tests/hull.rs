@@ -610,3 +610,28 @@ proptest! {
         }
     }
 }
+
+/// Found by the fit fuzz target (cut down to five of its 261 points): a
+/// needle 9e5 long with points a few units off it is flat to the hull's
+/// tolerance; the plane fitted to its polygon tilted from the one the
+/// points were found near, and left a point in front of it by more than
+/// the tolerance. Every point is behind every face, to within it.
+#[test]
+fn a_flat_hull_keeps_every_point_behind_its_faces() {
+    let points = [
+        Vec3::new(8.71e-6, 5.0, 4.0),
+        Vec3::new(5.0, 19102.648, -2.4079924),
+        Vec3::new(5.04746, 0.102336526, -2.6604943),
+        Vec3::new(4.8576202, -878009.94, -2.0012453),
+        Vec3::new(5.0887504, 0.047223605, -2.2784264),
+    ];
+    let hull = ConvexHull::new(&points).unwrap();
+    assert_eq!(hull.dimension(), 2);
+    for f in 0..hull.face_count() {
+        let (n, d) = (hull.face_normal(f), hull.face_offset(f));
+        for p in &points {
+            let height = n.dot(p.as_dvec3()) - d;
+            assert!(height <= hull.tolerance(), "{p} {height} in front of face {f}");
+        }
+    }
+}
