@@ -61,7 +61,9 @@ pub fn run(data: &[u8]) {
             let message =
                 stderr.strip_prefix("bvol: ").unwrap_or_else(|| panic!("{shown}: {stderr}"));
             one_line_error(message.trim_end_matches('\n'), None);
-            let named = files.iter().any(|f| message.contains(f.as_str()));
+            // A loose word may be taken as a file: any argument named counts.
+            let mut given = files.iter().chain(&args).filter(|f| !f.is_empty());
+            let named = given.any(|f| message.contains(f.as_str()));
             let argument = message.contains("--");
             assert!(named || argument, "{shown}: the error names no file or argument: {message}");
         }

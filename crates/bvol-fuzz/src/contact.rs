@@ -3,7 +3,7 @@
 use arbitrary::{Result, Unstructured};
 use bvol::glam::{DVec3, Vec3};
 use bvol::narrow::{Collision, Pose, WarmStart, collide_parts};
-use bvol::{Part, Shape};
+use bvol::{MAX_COORDINATE, Part, ROTATION_LENGTH_SQUARED, Shape};
 
 use crate::checks::{finite, one_line_error, unit};
 use crate::floats;
@@ -15,7 +15,8 @@ const MAX_HULL_POINTS: usize = 24;
 /// points) at any poses, both ways round. An error is one line; an answer
 /// is finite, agrees with the parts' bounding spheres (apart beyond them
 /// means separated), and the other way round gives the same verdict unless
-/// the two are within rounding of touching.
+/// the two are within rounding of touching; a touching pair's placed
+/// spheres and boxes (the World's culling tests) meet.
 pub fn run(data: &[u8]) {
     let u = &mut Unstructured::new(data);
     let (Ok(a), Ok(b)) = (shape(u), shape(u)) else { return };
@@ -34,6 +35,9 @@ pub fn run(data: &[u8]) {
     let placed = [Placed::new(&a, part_a, &pose_a), Placed::new(&b, part_b, &pose_b)];
     check(&forward, &placed);
     check(&backward, &[placed[1], placed[0]]);
+    if let Collision::Touching(_) = forward {
+        bounds_meet(&a, &pose_a, &b, &pose_b);
+    }
     let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
     let margin = |c: &Collision| match c {
         Collision::Separated { distance, .. } => -(*distance as f64),
@@ -96,6 +100,23 @@ fn check(c: &Collision, [a, b]: &[Placed; 2]) {
             }
         }
     }
+}
+
+/// The culling tests a World runs before the pair table: for a touching
+/// pair, at poses a World takes, the placed spheres and boxes must meet
+/// (else the pair would be lost before it is tested).
+fn bounds_meet(a: &Shape, pose_a: &Pose, b: &Shape, pose_b: &Pose) {
+    let placeable = |p: &Pose| {
+        p.position.abs().max_element() <= MAX_COORDINATE
+            && ROTATION_LENGTH_SQUARED.contains(&p.rotation.length_squared())
+    };
+    if !(placeable(pose_a) && placeable(pose_b)) {
+        return;
+    }
+    let (sa, sb) = (a.sphere().transformed(pose_a), b.sphere().transformed(pose_b));
+    assert!(sa.overlaps(&sb), "touching, but the placed spheres {sa:?} and {sb:?} are apart");
+    let (oa, ob) = (a.obb().transformed(pose_a), b.obb().transformed(pose_b));
+    assert!(oa.overlaps(&ob), "touching, but the placed boxes {oa:?} and {ob:?} are apart");
 }
 
 /// A box, ball, capsule or hull, of any size: the constructor's answer.

@@ -32,6 +32,7 @@
 
 pub mod cap;
 pub mod mutate;
+pub mod runner;
 
 mod checks;
 mod cli;
