@@ -66,7 +66,8 @@ impl fmt::Display for MeshError {
 
 impl std::error::Error for MeshError {}
 
-/// Reads every object of an OBJ file. Materials are not read.
+/// Reads every object of an OBJ file: its vertex positions and faces.
+/// Materials, texture coordinates and normals are not read.
 ///
 /// ```
 /// let meshes = bvol::load_obj("tests/meshes/teapot.obj").unwrap();
@@ -82,6 +83,7 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Vec<Mesh>, MeshError> {
     }
     let bytes = std::fs::read(path).map_err(read)?;
     let text = std::str::from_utf8(&bytes).map_err(|_| error(MeshProblem::NotText))?;
+    let text = without_texcoords_and_normals(text);
     let options = tobj::LoadOptions { triangulate: true, single_index: true, ..Default::default() };
     let (models, _) = tobj::load_obj_buf(&mut text.as_bytes(), &options, |_| {
         Err(tobj::LoadError::OpenFileFailed) // materials are not needed
@@ -97,6 +99,17 @@ pub fn load_obj(path: impl AsRef<Path>) -> Result<Vec<Mesh>, MeshError> {
         }
     }
     Ok(meshes)
+}
+
+/// The OBJ text without its `vt` and `vn` lines. bvol reads positions
+/// alone, and tobj (4.0) checks a face's texture and normal indices with
+/// unchecked arithmetic (`vt * 2 + 1`), which a far relative index such as
+/// `f 1/-3 2/1 3/1` overflows: a panic in a debug build, a wrong read in
+/// release. With no texture coordinates or normals those indices are not
+/// read at all.
+fn without_texcoords_and_normals(text: &str) -> String {
+    let kept = text.lines().filter(|l| !matches!(l.split_whitespace().next(), Some("vt" | "vn")));
+    kept.flat_map(|l| [l, "\n"]).collect()
 }
 
 fn mesh_of(model: tobj::Model) -> Mesh {

@@ -578,6 +578,31 @@ fn obj_files_load_or_give_typed_errors_naming_the_file() {
     std::fs::remove_dir_all(&dir).ok();
 }
 
+/// Found by the obj fuzz target under libFuzzer: a face whose texture or
+/// normal index is far out of range (`-3` with one `vt`) overflowed tobj's
+/// bounds check (`vt * 2 + 1`) and panicked in a debug build. Texture
+/// coordinates and normals are not read, so the triangle loads as if they
+/// were not there.
+#[test]
+fn far_texture_and_normal_indices_are_not_read() {
+    let dir = std::env::temp_dir().join(format!("bvol-far-index-{}", std::process::id()));
+    std::fs::create_dir_all(&dir).unwrap();
+    let triangle = "v 0 0 0\nv 1 0 0\nv 0 1 0\n";
+    for (name, rest) in [
+        ("texcoord.obj", "vt 0 0\nf 1/-3 2/1 3/1\n"),
+        ("normal.obj", "vn 0 0 1\nf 1//-3 2//1 3//1\n"),
+        ("both.obj", "vt 0 0\nvn 0 0 1\nf 1/-3/-3 2/1/1 3/1/1\n"),
+    ] {
+        let path = dir.join(name);
+        std::fs::write(&path, format!("{triangle}{rest}")).unwrap();
+        let meshes = bvol::load_obj(&path).unwrap();
+        assert_eq!(meshes.len(), 1, "{name}");
+        assert_eq!(meshes[0].positions, [Vec3::ZERO, Vec3::X, Vec3::Y], "{name}");
+        assert_eq!(meshes[0].triangles, [[0, 1, 2]], "{name}");
+    }
+    std::fs::remove_dir_all(&dir).ok();
+}
+
 /// Two unit cubes, dynamic, the second 0.99 above the first: they overlap.
 fn stacked_cubes() -> (World, BodyId, BodyId) {
     let mut world = World::new();

@@ -25,14 +25,18 @@ const MEMORY_LIMIT_KIB: u64 = 8 << 20;
 
 static BINARY: OnceLock<PathBuf> = OnceLock::new();
 
-/// Sets the `bvol` binary the `cli` target runs; by default the one beside
-/// the running executable (cargo builds both into the same folder).
+/// Sets the `bvol` binary the `cli` target runs; by default the one
+/// `BVOL_FUZZ_BVOL` names, else the one beside the running executable
+/// (cargo builds both into the same folder).
 pub fn set_binary(path: PathBuf) {
     let _ = BINARY.set(path);
 }
 
 fn binary() -> &'static PathBuf {
     BINARY.get_or_init(|| {
+        if let Some(path) = std::env::var_os("BVOL_FUZZ_BVOL") {
+            return PathBuf::from(path);
+        }
         let exe = std::env::current_exe().expect("the running executable's path");
         exe.with_file_name(format!("bvol{}", std::env::consts::EXE_SUFFIX))
     })

@@ -1,0 +1,6 @@
+//! The `contact` target of bvol-fuzz, under libFuzzer.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| bvol_fuzz::target("contact")
+    .expect("a target")
+    .run(data));

@@ -1,0 +1,4 @@
+//! The `obj` target of bvol-fuzz, under libFuzzer.
+#![no_main]
+
+libfuzzer_sys::fuzz_target!(|data: &[u8]| bvol_fuzz::target("obj").expect("a target").run(data));
