@@ -134,7 +134,7 @@ fn capsule_convex<S: Convex>(
         Feature::Face(f) => lying_on_face(core, radius, shape, f, depth, slop, true),
         Feature::Edge => None,
     };
-    let manifold = flat.unwrap_or_else(|| deepest_point(core, radius, shape, &axis));
+    let manifold = flat.unwrap_or_else(|| deepest_point(core, radius, shape, &axis, slop));
     Collision::touching(to_world.rotate(-axis.normal), depth, &manifold, to_world)
 }
 
@@ -274,10 +274,10 @@ fn clip(core: &Segment, planes: impl Iterator<Item = (DVec3, f64)>) -> Option<(f
     Some((lo, hi))
 }
 
-/// The part of the core inside the hull, as parameters.
-fn inside_hull<S: Convex>(core: &Segment, shape: &S) -> Option<(f64, f64)> {
+/// The part of the core inside the hull grown by `grow`, as parameters.
+fn inside_hull<S: Convex>(core: &Segment, shape: &S, grow: f64) -> Option<(f64, f64)> {
     let faces = 0..shape.topology().face_count() as u32;
-    clip(core, faces.map(|f| shape.plane(f)).map(|p| (p.normal, p.offset)))
+    clip(core, faces.map(|f| shape.plane(f)).map(|p| (p.normal, p.offset + grow)))
 }
 
 /// The two-point manifold of a capsule lying on face `f` (contact `depth`):
@@ -307,7 +307,7 @@ fn lying_on_face<S: Convex>(
     });
     let (mut lo, mut hi) = clip(core, sides)?;
     if sunk {
-        let (a, b) = inside_hull(core, shape)?;
+        let (a, b) = inside_hull(core, shape, 0.0)?;
         (lo, hi) = (lo.max(a), hi.min(b));
     }
     if lo >= hi {
@@ -328,12 +328,24 @@ fn lying_on_face<S: Convex>(
 
 /// The one-point manifold of a core inside the hull: at the point of the
 /// core inside the hull that is deepest along the axis (an end of the part
-/// inside; of the whole core where rounding leaves that part empty), midway
-/// between the capsule's surface below it and the hull's extent along the
-/// axis. Every point from the core's point inside to the contact point is
-/// within the contact depth of both bodies.
-fn deepest_point<S: Convex>(core: &Segment, radius: f64, shape: &S, axis: &Axis) -> Manifold {
-    let (lo, hi) = inside_hull(core, shape).unwrap_or((0.0, 1.0));
+/// inside), midway between the capsule's surface below it and the hull's
+/// extent along the axis. Every point from the core's point inside to the
+/// contact point is within the contact depth of both bodies.
+///
+/// A core that only grazes the hull (through a vertex, along an edge) can
+/// round to no part inside: then the part inside the hull grown by `slop`,
+/// and only when that is empty too, the whole core. (Taking the whole core
+/// at once put the contact of a capsule 7000 long through a hull's vertex
+/// at the capsule's end, 3514 from the hull.)
+fn deepest_point<S: Convex>(
+    core: &Segment,
+    radius: f64,
+    shape: &S,
+    axis: &Axis,
+    slop: f64,
+) -> Manifold {
+    let inside = inside_hull(core, shape, 0.0).or_else(|| inside_hull(core, shape, slop));
+    let (lo, hi) = inside.unwrap_or((0.0, 1.0));
     let (p, q) = (core.at(lo), core.at(hi));
     let deepest = if axis.height(p) <= axis.height(q) { p } else { q };
     let height = axis.height(deepest);

@@ -1123,3 +1123,28 @@ fn parry_calls_small_capsules_a_fifth_of_their_size_apart_intersecting() {
     let (hit, apart) = parry(1000.0);
     assert!(!hit && (f64::from(apart) - 1000.0 * exact.separation).abs() < 1e-3, "{hit} {apart}");
 }
+
+/// Found by the contact fuzz target under libFuzzer: a capsule 7028 long
+/// and 0.003 thick whose core runs along an edge of a small hull. The part
+/// of the core inside the hull rounded to nothing, and the contact point
+/// was put at the core's end, 3514 from the hull. It is now on that edge:
+/// within the hull's box grown by the contact depth.
+#[test]
+fn a_long_core_grazing_a_hull_touches_it_where_it_grazes() {
+    let hull = Polyhedron::from_points(&[
+        Vec3::new(0.068541, 0.084227, -0.113552995),
+        Vec3::new(-0.066154, -0.024552, 0.100936),
+        Vec3::ZERO,
+        Vec3::new(-0.5328125, 0.0, 0.0),
+        Vec3::new(-3.41e-9, -0.5328125, 0.0),
+    ])
+    .unwrap();
+    let capsule = Capsule::new(0.00274, 3514.0);
+    let contact = touching(capsule_hull(&capsule, &Pose::IDENTITY, &hull, &Pose::IDENTITY));
+    let (lo, hi) = (Vec3::new(-0.54, -0.54, -0.12), Vec3::new(0.07, 0.09, 0.11));
+    for p in contact.points() {
+        let grown = Vec3::splat(contact.depth + 1e-6);
+        let inside = (lo - grown).cmple(p.position).all() && p.position.cmple(hi + grown).all();
+        assert!(inside, "contact point {} is not at the hull", p.position);
+    }
+}
