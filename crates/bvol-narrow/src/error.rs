@@ -103,6 +103,13 @@ pub enum NarrowError {
         /// The body whose shape is bad.
         body: Body,
     },
+    /// The position of `body` has a coordinate beyond
+    /// [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE): distances from it
+    /// could overflow f32.
+    PoseOutOfRange {
+        /// The body whose pose is bad.
+        body: Body,
+    },
 }
 
 impl NarrowError {
@@ -114,6 +121,9 @@ impl NarrowError {
             }
             NarrowError::NonFiniteShape { body } => {
                 NarrowError::NonFiniteShape { body: body.other() }
+            }
+            NarrowError::PoseOutOfRange { body } => {
+                NarrowError::PoseOutOfRange { body: body.other() }
             }
         }
     }
@@ -128,6 +138,11 @@ impl fmt::Display for NarrowError {
             NarrowError::NonFiniteShape { body } => {
                 write!(f, "the shape of body {body} has a non-finite field or a negative size")
             }
+            NarrowError::PoseOutOfRange { body } => write!(
+                f,
+                "the position of body {body} has a coordinate beyond ±{:e}",
+                bvol_volumes::MAX_COORDINATE
+            ),
         }
     }
 }

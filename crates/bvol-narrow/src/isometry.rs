@@ -32,9 +32,18 @@ impl DIsometry3 {
     }
 
     /// [`NarrowError::NonFinitePose`] for a pose with a NaN or infinite
-    /// component or a zero rotation.
+    /// component or a zero rotation; [`NarrowError::PoseOutOfRange`] for a
+    /// position beyond [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE) (at
+    /// f32's largest, a gap came out infinite).
     pub fn check(pose: &Pose, body: Body) -> Result<(), NarrowError> {
-        if pose.is_finite() { Ok(()) } else { Err(NarrowError::NonFinitePose { body }) }
+        let limit = glam::Vec3::splat(bvol_volumes::MAX_COORDINATE);
+        if !pose.is_finite() {
+            Err(NarrowError::NonFinitePose { body })
+        } else if !pose.position.abs().cmple(limit).all() {
+            Err(NarrowError::PoseOutOfRange { body })
+        } else {
+            Ok(())
+        }
     }
 
     /// The isometry of a pose that passed [`DIsometry3::check`].

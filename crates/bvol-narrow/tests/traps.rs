@@ -19,8 +19,9 @@
 mod common;
 
 use bvol_narrow::{
-    Body, Collision, Contact, NarrowError, Polyhedron, Pose, ShapeError, WarmStart, hull_hull,
-    obb_obb, sphere_hull, sphere_obb, sphere_sphere,
+    Body, Capsule, Collision, Contact, NarrowError, Polyhedron, Pose, ShapeError, WarmStart,
+    capsule_capsule, capsule_hull, capsule_sphere, hull_hull, obb_obb, sphere_hull, sphere_obb,
+    sphere_sphere,
 };
 use bvol_volumes::{ConvexHull, Obb, Sphere};
 use common::random_rotation;
@@ -895,6 +896,43 @@ fn bad_poses_and_shapes_are_typed_errors() {
     assert!(NarrowError::NonFinitePose { body: Body::B }.to_string().contains('B'));
 }
 
+/// Found by the contact fuzz target under libFuzzer: two capsules, one at
+/// f32's largest position, were "separated" by an infinite distance. Every
+/// pair test now refuses a position beyond `MAX_COORDINATE`, naming the
+/// body, and up to it gives finite answers.
+#[test]
+fn positions_beyond_the_coordinate_limit_are_typed_errors() {
+    let cube = Polyhedron::cuboid(Vec3::ONE).expect("cube");
+    let obb = Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ONE };
+    let ball = Sphere::new(Vec3::ZERO, 1.0);
+    let rod = Capsule::new(0.1, 1.0);
+    let good = Pose::IDENTITY;
+    for x in [1.0000001e18, 1e30, f32::MAX, -f32::MAX] {
+        let far = Pose::new(Vec3::new(0.0, x, 0.0), Quat::IDENTITY);
+        for (pa, pb, body) in [(&far, &good, Body::A), (&good, &far, Body::B)] {
+            let want = Err(NarrowError::PoseOutOfRange { body });
+            assert_eq!(hull_hull(&cube, pa, &cube, pb, &mut WarmStart::default()), want, "{x}");
+            assert_eq!(obb_obb(&obb, pa, &obb, pb), want, "{x}");
+            assert_eq!(sphere_hull(&ball, pa, &cube, pb), want, "{x}");
+            assert_eq!(sphere_obb(&ball, pa, &obb, pb), want, "{x}");
+            assert_eq!(sphere_sphere(&ball, pa, &ball, pb), want, "{x}");
+            assert_eq!(capsule_capsule(&rod, pa, &rod, pb), want, "{x}");
+            assert_eq!(capsule_sphere(&rod, pa, &ball, pb), want, "{x}");
+            assert_eq!(capsule_hull(&rod, pa, &cube, pb), want, "{x}");
+        }
+    }
+    let limit = Pose::new(Vec3::splat(bvol_volumes::MAX_COORDINATE), Quat::IDENTITY);
+    let hits = [
+        hull_hull(&cube, &limit, &cube, &good, &mut WarmStart::default()),
+        capsule_capsule(&rod, &limit, &rod, &good),
+        sphere_sphere(&ball, &good, &ball, &limit),
+    ];
+    for hit in hits {
+        assert!(finite(&hit.unwrap()), "at the limit");
+    }
+    assert!(NarrowError::PoseOutOfRange { body: Body::A }.to_string().contains("1e18"));
+}
+
 /// Whether every number in an answer is finite.
 fn finite(hit: &Collision) -> bool {
     match hit {
@@ -908,7 +946,7 @@ fn finite(hit: &Collision) -> bool {
 }
 
 /// Legal but extreme input: flat and zero boxes, zero spheres, coincident
-/// centres, far-away and huge poses, unnormalised rotations. Every answer is
+/// centres, poses at the coordinate limit, unnormalised rotations. Every answer is
 /// finite and its normal unit.
 #[test]
 fn extreme_finite_input_gives_finite_answers() {
@@ -924,7 +962,7 @@ fn extreme_finite_input_gives_finite_answers() {
     let big = Polyhedron::cuboid(Vec3::splat(1e30)).expect("huge cube");
     let poses = [
         Pose::IDENTITY,
-        Pose::new(Vec3::splat(1e30), Quat::IDENTITY),
+        Pose::new(Vec3::splat(bvol_volumes::MAX_COORDINATE), Quat::IDENTITY),
         Pose::new(Vec3::new(0.0, 1.0, 0.0), Quat::from_xyzw(0.0, 0.0, 0.0, 1e-20)),
         Pose::new(Vec3::new(0.5, 0.0, 0.0), Quat::from_xyzw(3.0, 0.0, 4.0, 0.0)),
     ];
