@@ -43,9 +43,10 @@ pub const DICTIONARY: &[&[u8]] = &[
 
 /// Loads `data` as an OBJ file. An error names the file in one line; what
 /// is accepted has finite vertices, faces that index them, and a shape
-/// (when it is a solid) whose sphere and box contain its hulls, so every
-/// vertex to within its hull's tolerance (a vertex that close outside a
-/// face counts as on it: `ConvexHull::tolerance`).
+/// (when it is a solid) whose sphere and box contain its hulls' vertices,
+/// with every mesh vertex behind every face of its hull (to within the
+/// hull's tolerance, inside which a vertex counts as on a face: the hull's
+/// contract, `ConvexHull::tolerance`).
 pub fn run(data: &[u8]) {
     let path = crate::scratch::file("mesh.obj", data);
     let shown = path.display().to_string();
@@ -67,13 +68,20 @@ pub fn run(data: &[u8]) {
     assert!(sphere.radius.is_finite(), "the shape's radius is {}", sphere.radius);
     for (m, part) in meshes.iter().zip(shape.parts()) {
         let Part::Hull(hull) = part else { panic!("a mesh gave a part that is not a hull") };
-        let tolerance = hull.hull.tolerance();
-        for &p in &m.positions {
-            let out = sphere.center.as_dvec3().distance(p.as_dvec3()) - sphere.radius as f64;
-            assert!(out <= tolerance, "{p} is {out} outside the shape's sphere {sphere:?}");
-            let local = obb.axes.as_dmat3().transpose() * (p.as_dvec3() - obb.center.as_dvec3());
-            let out = (local.abs() - obb.half_extents.as_dvec3()).max_element();
-            assert!(out <= tolerance, "{p} is {out} outside the shape's box {obb:?}");
+        for &v in hull.hull.vertices() {
+            assert!(
+                sphere.contains_point(v),
+                "hull vertex {v} outside the shape's sphere {sphere:?}"
+            );
+            assert!(obb.contains_point(v), "hull vertex {v} outside the shape's box {obb:?}");
+        }
+        let hull = &hull.hull;
+        for f in 0..hull.face_count() {
+            let (n, d) = (hull.face_normal(f), hull.face_offset(f));
+            for &p in &m.positions {
+                let height = n.dot(p.as_dvec3()) - d;
+                assert!(height <= hull.tolerance(), "vertex {p} is {height} in front of face {f}");
+            }
         }
     }
     let mass = shape.mass_properties();

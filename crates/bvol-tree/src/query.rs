@@ -92,8 +92,10 @@ impl<B: Bound> Tree<B> {
             }
             // Entries are computed in f64 and reported rounded down: a bound
             // reported at exactly `limit` may enter just past it, and must
-            // not be culled, so that ties are decided by id.
-            let reach = limit.next_up();
+            // not be culled, so that ties are decided by id. Never past
+            // `max_t`, though: a bound entered just past it would be
+            // reported at it, and hit where `ray_cast_all` finds nothing.
+            let reach = if limit < max_t { limit.next_up() } else { max_t };
             let n = &self.nodes[x as usize];
             let t = [n.bounds[0].ray_entry(ray, reach), n.bounds[1].ray_entry(ray, reach)];
             // Push the farther child first, so the nearer is visited first.
