@@ -56,32 +56,31 @@ fn grow(size: usize) -> bool {
     false
 }
 
+/// Counts and caps an allocation of `size` bytes made by `allocate`:
+/// refused (null) past the cap, uncounted again if the system fails it.
+fn counted(size: usize, allocate: impl FnOnce() -> *mut u8) -> *mut u8 {
+    if !grow(size) {
+        return std::ptr::null_mut();
+    }
+    let p = allocate();
+    if p.is_null() {
+        LIVE.fetch_sub(size, Relaxed);
+    }
+    p
+}
+
 // SAFETY: every call is passed on to `System` unchanged, or refused with a
 // null pointer before it reaches it; the count only follows what `System`
 // holds.
 unsafe impl GlobalAlloc for CappedAlloc {
     unsafe fn alloc(&self, layout: Layout) -> *mut u8 {
-        if !grow(layout.size()) {
-            return std::ptr::null_mut();
-        }
         // SAFETY: the caller's layout, passed on.
-        let p = unsafe { System.alloc(layout) };
-        if p.is_null() {
-            LIVE.fetch_sub(layout.size(), Relaxed);
-        }
-        p
+        counted(layout.size(), || unsafe { System.alloc(layout) })
     }
 
     unsafe fn alloc_zeroed(&self, layout: Layout) -> *mut u8 {
-        if !grow(layout.size()) {
-            return std::ptr::null_mut();
-        }
         // SAFETY: the caller's layout, passed on.
-        let p = unsafe { System.alloc_zeroed(layout) };
-        if p.is_null() {
-            LIVE.fetch_sub(layout.size(), Relaxed);
-        }
-        p
+        counted(layout.size(), || unsafe { System.alloc_zeroed(layout) })
     }
 
     unsafe fn dealloc(&self, ptr: *mut u8, layout: Layout) {

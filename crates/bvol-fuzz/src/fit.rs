@@ -7,7 +7,7 @@ use bvol::volumes::{
     ObbMethod, Pose, Sphere, SphereMethod,
 };
 
-use crate::checks::{finite, one_line_error};
+use crate::checks::{behind_every_face, finite, one_line_error};
 use crate::floats;
 
 /// Most points in a set.
@@ -114,12 +114,5 @@ fn kdop<const N: usize>(k: &Kdop<N>, points: &[Vec3]) {
 fn hull(h: &ConvexHull, points: &[Vec3]) {
     h.vertices().iter().for_each(|&v| finite(v, "a hull vertex"));
     assert!(h.volume().is_finite() && h.volume() >= 0.0, "hull volume {}", h.volume());
-    for f in 0..h.face_count() {
-        let (n, d) = (h.face_normal(f), h.face_offset(f));
-        assert!(n.is_finite() && d.is_finite(), "face {f}'s plane");
-        for &p in points {
-            let height = n.dot(p.as_dvec3()) - d;
-            assert!(height <= h.tolerance(), "{p} is {height} in front of face {f}");
-        }
-    }
+    behind_every_face(h, points);
 }

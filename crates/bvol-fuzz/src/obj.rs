@@ -3,7 +3,7 @@
 
 use bvol::{FitOptions, Part, Shape, load_obj};
 
-use crate::checks::{finite, one_line_error};
+use crate::checks::{behind_every_face, finite, one_line_error};
 
 /// Tokens of the OBJ grammar and numbers at the edges of f32.
 pub const DICTIONARY: &[&[u8]] = &[
@@ -75,14 +75,7 @@ pub fn run(data: &[u8]) {
             );
             assert!(obb.contains_point(v), "hull vertex {v} outside the shape's box {obb:?}");
         }
-        let hull = &hull.hull;
-        for f in 0..hull.face_count() {
-            let (n, d) = (hull.face_normal(f), hull.face_offset(f));
-            for &p in &m.positions {
-                let height = n.dot(p.as_dvec3()) - d;
-                assert!(height <= hull.tolerance(), "vertex {p} is {height} in front of face {f}");
-            }
-        }
+        behind_every_face(&hull.hull, &m.positions);
     }
     let mass = shape.mass_properties();
     assert!(mass.volume.is_finite() && mass.volume >= 0.0, "volume {}", mass.volume);
