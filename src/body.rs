@@ -24,6 +24,33 @@ impl BodyId {
     pub fn index(self) -> u32 {
         self.index
     }
+
+    /// The handle as one number, the generation in the high 32 bits and
+    /// the slot in the low: for keeping handles where only integers fit
+    /// (another language's objects, a file, a numpy array).
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use bvol::{BodyDesc, BodyId, Shape, World, volumes::Pose};
+    ///
+    /// let mut world = World::new();
+    /// let ball = Arc::new(Shape::ball(1.0)?);
+    /// let id = world.add_body(BodyDesc::new(ball, Pose::IDENTITY))?;
+    /// assert_eq!(BodyId::from_bits(id.to_bits()), id);
+    /// world.remove_body(id)?;
+    /// assert!(world.pose(BodyId::from_bits(id.to_bits())).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn to_bits(self) -> u64 {
+        (u64::from(self.generation) << 32) | u64::from(self.index)
+    }
+
+    /// The handle [`to_bits`](Self::to_bits) gave. Any number makes a
+    /// handle: one no world gave names no body, and a world's calls answer
+    /// it with [`WorldError::UnknownBody`].
+    pub fn from_bits(bits: u64) -> BodyId {
+        BodyId { index: bits as u32, generation: (bits >> 32) as u32 }
+    }
 }
 
 impl fmt::Display for BodyId {

@@ -111,6 +111,7 @@ pub use collision::{Collision, Contact, ContactPoint};
 pub use error::{Body, NarrowError, ShapeError};
 pub use hull_hull::hull_hull;
 pub use hull_part::HullPart;
+pub use manifold::MAX_POINTS;
 pub use mass::MassProperties;
 pub use obb_obb::obb_obb;
 pub use pair_table::collide_parts;

@@ -20,7 +20,7 @@ const TOUCH_SLOP: f64 = 1e-9;
 
 /// The most points a manifold, and so a [`Contact`](crate::Contact), holds:
 /// enough to hold a face resting on a face.
-pub(crate) const MAX_POINTS: usize = 4;
+pub const MAX_POINTS: usize = 4;
 
 thread_local! {
     /// Two polygons' worth of corners per thread, reused by every face
