@@ -112,15 +112,16 @@ fn narrow(v: f64) -> f32 {
 /// `(N, 3)` for a tail of `[3]`.
 fn shape_text(tail: &[usize]) -> String {
     let dims: Vec<String> =
-        std::iter::once("N".to_string()).chain(tail.iter().map(|d| d.to_string())).collect();
-    format!("({})", dims.join(", "))
+        std::iter::once("N".to_string()).chain(tail.iter().map(usize::to_string)).collect();
+    tuple_text(&dims)
 }
 
 /// Python's way of writing a shape: `(5,)`, `(5, 2)`.
-fn tuple_text(shape: &[usize]) -> String {
-    match shape {
+fn tuple_text(dims: &[impl ToString]) -> String {
+    let dims: Vec<String> = dims.iter().map(ToString::to_string).collect();
+    match dims.as_slice() {
         [one] => format!("({one},)"),
-        _ => format!("({})", shape.iter().map(usize::to_string).collect::<Vec<_>>().join(", ")),
+        _ => format!("({})", dims.join(", ")),
     }
 }
 
