@@ -45,7 +45,7 @@ impl PyWorld {
     /// `kind` is "dynamic", "static" or "sleeping"; two bodies are tested
     /// when each one's `layers` bits meet the other's `mask`.
     #[pyo3(signature = (*, vertices = None, primitive = None, shape = None, pose = None,
-        kind = "dynamic", user_data = 0, layers = 1, mask = u32::MAX))]
+        kind = "dynamic", user_data = 0, layers = 1, mask = 4294967295))]
     #[allow(clippy::too_many_arguments)] // Python's keyword arguments.
     fn add_body(
         &mut self,

@@ -146,7 +146,7 @@ class World(_NativeWorld):
         events["point_depths"] = columns["point_depths"]
         return events
 
-    def ray_cast(self, origins, directions, max_t: float = np.inf) -> np.ndarray:
+    def ray_cast(self, origins: np.ndarray, directions: np.ndarray, max_t: float = np.inf) -> np.ndarray:
         """The nearest body each ray meets within `max_t`, as of the last update.
 
         `origins` and `directions` are (R, 3) float arrays; returns an (R,)
@@ -155,6 +155,6 @@ class World(_NativeWorld):
         """
         columns = self._ray_columns(origins, directions, float(max_t))
         hits = np.empty(len(columns["hit"]), dtype=RAY_HIT_DTYPE)
-        for name in RAY_HIT_DTYPE.names:
+        for name in ("hit", "id", "t", "point", "user_data"):
             hits[name] = columns[name]
         return hits
