@@ -3,7 +3,11 @@
 use bvol::glam::{Quat, Vec3};
 use bvol::narrow::MAX_POINTS;
 use bvol::volumes::{Pose, Ray};
-use bvol::{BodyDesc, BodyId, BodyKind, EventKind, FrameStats, World, WorldConfig};
+use std::sync::Arc;
+
+use bvol::{
+    BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, World, WorldConfig, WorldError,
+};
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
@@ -98,20 +102,9 @@ impl PyWorld {
             None => vec![0; poses.len()],
         };
         same_rows(&["positions", "user_data"], &[poses.len(), user_data.len()])?;
-        let mut ids = Vec::with_capacity(poses.len());
-        for (&pose, &data) in poses.iter().zip(&user_data) {
-            let desc = BodyDesc::new(shape.0.clone(), pose).with_kind(kind).with_user_data(data);
-            match self.world.add_body(desc) {
-                Ok(id) => ids.push(id),
-                Err(error) => {
-                    for &id in &ids {
-                        self.world.remove_body(id).map_err(world_error)?;
-                    }
-                    return Err(world_error(error));
-                }
-            }
-        }
-        Ok(PyArray1::from_vec(py, ids.into_iter().map(BodyId::to_bits).collect()))
+        let world = &mut self.world;
+        let ids = py.detach(|| add_all(world, &shape.0, kind, &poses, &user_data));
+        Ok(PyArray1::from_vec(py, ids.map_err(world_error)?))
     }
 
     /// Removes the body `id` (its events end at the next update).
@@ -125,6 +118,7 @@ impl PyWorld {
     #[pyo3(signature = (ids, positions, quaternions = None))]
     fn set_poses(
         &mut self,
+        py: Python<'_>,
         ids: &Bound<'_, PyAny>,
         positions: &Bound<'_, PyAny>,
         quaternions: Option<&Bound<'_, PyAny>>,
@@ -132,7 +126,8 @@ impl PyWorld {
         let ids: Vec<BodyId> = integers("ids", ids)?.into_iter().map(BodyId::from_bits).collect();
         let poses = poses_of(positions, quaternions)?;
         same_rows(&["ids", "positions"], &[ids.len(), poses.len()])?;
-        self.world.set_poses(&ids, &poses).map_err(world_error)
+        let world = &mut self.world;
+        py.detach(|| world.set_poses(&ids, &poses)).map_err(world_error)
     }
 
     /// The body's pose: its position, a (3,) float32 array, and its
@@ -262,6 +257,31 @@ impl PyWorld {
         debug_assert_eq!(hits.len(), n);
         Ok(dict)
     }
+}
+
+/// Adds a body of `shape` at each pose, with its user data, and returns
+/// their ids; if one cannot be added, removes those added and returns why.
+fn add_all(
+    world: &mut World,
+    shape: &Arc<Shape>,
+    kind: BodyKind,
+    poses: &[Pose],
+    user_data: &[u64],
+) -> Result<Vec<u64>, WorldError> {
+    let mut ids = Vec::with_capacity(poses.len());
+    for (&pose, &data) in poses.iter().zip(user_data) {
+        let desc = BodyDesc::new(shape.clone(), pose).with_kind(kind).with_user_data(data);
+        match world.add_body(desc) {
+            Ok(id) => ids.push(id),
+            Err(error) => {
+                for &id in &ids {
+                    world.remove_body(id)?;
+                }
+                return Err(error);
+            }
+        }
+    }
+    Ok(ids.into_iter().map(BodyId::to_bits).collect())
 }
 
 /// Events as columns: what `World.events` lays out as a structured array.
