@@ -11,12 +11,39 @@ use pyo3::prelude::*;
 use crate::arrays::{Array2, rows_array, vector_array, vectors};
 use crate::errors::value_error;
 
+/// The `#[pymethods]` of a bound's class: `volume` and `contains`, from the
+/// wrapped bound's `volume_f64` and `contains_point`, then the class's own.
+macro_rules! bound_methods {
+    ($class:ident, $($methods:tt)*) => {
+        #[pymethods]
+        impl $class {
+            /// The volume, in float64.
+            #[getter]
+            fn volume(&self) -> f64 {
+                self.0.volume_f64()
+            }
+
+            /// Whether each of the (N, 3) `points` lies inside or on the
+            /// bound: an (N,) bool array.
+            fn contains<'py>(
+                &self,
+                py: Python<'py>,
+                points: &Bound<'py, PyAny>,
+            ) -> PyResult<Bound<'py, PyArray1<bool>>> {
+                contains(py, points, |p| self.0.contains_point(p))
+            }
+
+            $($methods)*
+        }
+    };
+}
+
 /// A bounding sphere: the points within `radius` of `center`.
 #[pyclass(name = "Sphere", module = "bvol", frozen)]
 pub(crate) struct PySphere(pub(crate) Sphere);
 
-#[pymethods]
-impl PySphere {
+bound_methods! {
+    PySphere,
     /// The centre, a (3,) float32 array.
     #[getter]
     fn center<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
@@ -29,22 +56,6 @@ impl PySphere {
         self.0.radius
     }
 
-    /// The volume, in float64.
-    #[getter]
-    fn volume(&self) -> f64 {
-        self.0.volume_f64()
-    }
-
-    /// Whether each of the (N, 3) `points` lies inside or on the sphere: an
-    /// (N,) bool array.
-    fn contains<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray1<bool>>> {
-        contains(py, points, |p| self.0.contains_point(p))
-    }
-
     fn __repr__(&self) -> String {
         format!("Sphere(center={:?}, radius={:?})", self.0.center.to_array(), self.0.radius)
     }
@@ -55,8 +66,8 @@ impl PySphere {
 #[pyclass(name = "OrientedBox", module = "bvol", frozen)]
 pub(crate) struct PyOrientedBox(pub(crate) Obb);
 
-#[pymethods]
-impl PyOrientedBox {
+bound_methods! {
+    PyOrientedBox,
     /// The centre, a (3,) float32 array.
     #[getter]
     fn center<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
@@ -75,12 +86,6 @@ impl PyOrientedBox {
         PyArray1::from_slice(py, &self.0.half_extents.to_array())
     }
 
-    /// The volume, in float64.
-    #[getter]
-    fn volume(&self) -> f64 {
-        self.0.volume_f64()
-    }
-
     /// The eight corners, an (8, 3) float32 array.
     fn corners<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
         let obb = &self.0;
@@ -92,16 +97,6 @@ impl PyOrientedBox {
             })
             .collect();
         vector_array(py, &corners)
-    }
-
-    /// Whether each of the (N, 3) `points` lies inside or on the box: an
-    /// (N,) bool array.
-    fn contains<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray1<bool>>> {
-        contains(py, points, |p| self.0.contains_point(p))
     }
 
     fn __repr__(&self) -> String {
@@ -119,8 +114,8 @@ impl PyOrientedBox {
 #[pyclass(name = "Aabb", module = "bvol", frozen)]
 pub(crate) struct PyAabb(pub(crate) Aabb);
 
-#[pymethods]
-impl PyAabb {
+bound_methods! {
+    PyAabb,
     /// The lower corner, a (3,) float32 array.
     #[getter]
     fn min<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
@@ -131,22 +126,6 @@ impl PyAabb {
     #[getter]
     fn max<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
         PyArray1::from_slice(py, &self.0.max.to_array())
-    }
-
-    /// The volume, in float64.
-    #[getter]
-    fn volume(&self) -> f64 {
-        self.0.volume_f64()
-    }
-
-    /// Whether each of the (N, 3) `points` lies inside or on the box: an
-    /// (N,) bool array.
-    fn contains<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray1<bool>>> {
-        contains(py, points, |p| self.0.contains_point(p))
     }
 
     fn __repr__(&self) -> String {
@@ -175,13 +154,23 @@ macro_rules! with_kdop {
     };
 }
 
+impl AnyKdop {
+    fn volume_f64(&self) -> f64 {
+        with_kdop!(self, dop => dop.volume_f64())
+    }
+
+    fn contains_point(&self, p: Vec3) -> bool {
+        with_kdop!(self, dop => dop.contains_point(p))
+    }
+}
+
 /// A discrete oriented polytope: the points whose projection on each slab
 /// direction `directions[i]` lies within `[min[i], max[i]]`.
 #[pyclass(name = "Kdop", module = "bvol", frozen)]
 pub(crate) struct PyKdop(AnyKdop);
 
-#[pymethods]
-impl PyKdop {
+bound_methods! {
+    PyKdop,
     /// The number of faces: 6, 14, 18 or 26.
     #[getter]
     fn k(&self) -> usize {
@@ -205,22 +194,6 @@ impl PyKdop {
     #[getter]
     fn max<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray1<f32>> {
         with_kdop!(&self.0, dop => PyArray1::from_slice(py, &dop.max))
-    }
-
-    /// The volume, in float64.
-    #[getter]
-    fn volume(&self) -> f64 {
-        with_kdop!(&self.0, dop => dop.volume_f64())
-    }
-
-    /// Whether each of the (N, 3) `points` lies inside or on the polytope:
-    /// an (N,) bool array.
-    fn contains<'py>(
-        &self,
-        py: Python<'py>,
-        points: &Bound<'py, PyAny>,
-    ) -> PyResult<Bound<'py, PyArray1<bool>>> {
-        with_kdop!(&self.0, dop => contains(py, points, |p| dop.contains_point(p)))
     }
 
     fn __repr__(&self) -> String {
