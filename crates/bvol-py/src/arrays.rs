@@ -4,6 +4,7 @@
 //! owns.
 
 use bvol::glam::Vec3;
+use numpy::ndarray::Ix2;
 use numpy::{
     PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
     PyUntypedArrayMethods,
@@ -72,11 +73,10 @@ pub(crate) fn floats<'py>(
         if array.is_c_contiguous() {
             return Ok(Floats::InPlace(array));
         }
-        return Ok(Floats::Copied(array.as_array().iter().copied().collect()));
+        return Ok(Floats::Copied(copied(&array, |v| v)));
     }
     if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
-        let array = array.readonly();
-        return Ok(Floats::Copied(array.as_array().iter().map(|&v| narrow(v)).collect()));
+        return Ok(Floats::Copied(copied(&array.readonly(), narrow)));
     }
     Err(PyTypeError::new_err(format!(
         "{name}: expected float32 or float64 values, got {}",
@@ -98,6 +98,24 @@ pub(crate) fn same_rows(names: &[&str], rows: &[usize]) -> PyResult<usize> {
             "{} has {} rows but {} has {n}",
             names[i], rows[i], names[0]
         ))),
+    }
+}
+
+/// Every value of `array` through `f`, in C order: from one slice where the
+/// array is C-ordered, else through a two-dimensional view where it has
+/// two dimensions (an n-dimensional iterator pays for its generality on
+/// every value).
+fn copied<T: numpy::Element + Copy>(
+    array: &PyReadonlyArrayDyn<'_, T>,
+    f: impl Fn(T) -> f32,
+) -> Vec<f32> {
+    if let Ok(values) = array.as_slice() {
+        return values.iter().map(|&v| f(v)).collect();
+    }
+    let view = array.as_array();
+    match view.view().into_dimensionality::<Ix2>() {
+        Ok(rows) => rows.iter().map(|&v| f(v)).collect(),
+        Err(_) => view.iter().map(|&v| f(v)).collect(),
     }
 }
 
