@@ -13,6 +13,7 @@
 use glam::{DVec3, Vec3};
 
 use crate::Sphere;
+use crate::fit::extremes::extremes;
 
 /// A point counts as outside the ball when its excess `|p - c|^2 - r^2` is above
 /// this fraction of `r^2` (a relative distance of half as much). Support points
@@ -30,11 +31,37 @@ const DEPENDENT: f64 = 1e-20;
 
 /// The exact minimum sphere of the points (Gärtner 1999), rounded by the final
 /// containment pass.
+///
+/// The pivoting runs on a core set rather than on all the points: the 26
+/// extreme points along 13 directions first, then, after each solve, every
+/// point found outside the core's ball by one pass over the set. The ball
+/// of a subset holding every point is the ball of the set, and a cloud's
+/// ball rests on a few points near its rim, so a few passes over the set
+/// do what a pass per pivot did: the solve-on-a-subset, add-the-violators
+/// scheme of Clarkson's algorithm for LP-type problems ("Las Vegas
+/// algorithms for linear and integer programming when the dimension is
+/// small", J. ACM 42(2), 1995).
 pub(crate) fn exact(points: &[Vec3]) -> Sphere {
     // Work relative to a point of the set: coordinates are then of the order of
     // the radius, whatever the offset, and the differences are exact in f64.
     let origin = points[0].as_dvec3();
-    let (center, _) = pivot(points, |p| p.as_dvec3() - origin);
+    let local = |p: Vec3| p.as_dvec3() - origin;
+    let mut core: Vec<DVec3> =
+        extremes::<13>(points).iter().flatten().map(|&i| local(points[i])).collect();
+    let mut grown = f64::NEG_INFINITY;
+    let center = loop {
+        let (center, radius2) = pivot(&core, |p| p);
+        if radius2 <= grown {
+            break center; // rounding stalled the growth: as good as it gets
+        }
+        grown = radius2;
+        let before = core.len();
+        let outside = |p: &DVec3| (*p - center).length_squared() - radius2 > OUTSIDE * radius2;
+        core.extend(points.iter().map(|&p| local(p)).filter(outside));
+        if core.len() == before {
+            break center;
+        }
+    };
     Sphere::enclosing(center + origin, points)
 }
 
