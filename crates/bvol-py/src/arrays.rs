@@ -109,7 +109,8 @@ fn copied<T: numpy::Element + Copy>(
     array: &PyReadonlyArrayDyn<'_, T>,
     f: impl Fn(T) -> f32,
 ) -> Vec<f32> {
-    if let Ok(values) = array.as_slice() {
+    // `as_slice` also takes a Fortran-ordered array, in its memory order.
+    if let (true, Ok(values)) = (array.is_c_contiguous(), array.as_slice()) {
         return values.iter().map(|&v| f(v)).collect();
     }
     let view = array.as_array();
