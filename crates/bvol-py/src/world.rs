@@ -37,7 +37,9 @@ impl PyWorld {
     #[new]
     #[pyo3(signature = (threads = None))]
     fn new(threads: Option<usize>) -> PyResult<Self> {
-        let world = World::with_config(WorldConfig { threads }).map_err(world_error)?;
+        let config = WorldConfig::default();
+        let config = threads.map_or(config, |n| config.with_threads(n));
+        let world = World::with_config(config).map_err(world_error)?;
         Ok(PyWorld { world })
     }
 
