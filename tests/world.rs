@@ -25,7 +25,8 @@ fn mesh(name: &str) -> PathBuf {
 }
 
 /// A mix of shapes: boxes, a rod, a tetrahedron, a capsule, a ball, the
-/// bunny's hull scaled down, and a two-part shape (two objects of one file).
+/// bunny's hull scaled down, a two-part shape (two objects of one file),
+/// and scaled copies of some (`Shape::scaled`, uniform and per axis).
 fn shapes() -> Vec<Arc<Shape>> {
     shapes_of_size(1.0)
 }
@@ -46,7 +47,17 @@ fn shapes_of_size(s: f32) -> Vec<Arc<Shape>> {
         Shape::capsule(0.3 * s, 0.5 * s).unwrap(),
         Shape::ball(0.5 * s).unwrap(),
         Shape::convex(&small).unwrap(),
-        Shape::from_meshes(&[two, right], FitOptions::default()).unwrap(),
+        Shape::from_meshes(&[two.clone(), right.clone()], FitOptions::default()).unwrap(),
+        // Scaled shapes: a box stretched per axis, the bunny's hull scaled
+        // uniformly (its bounds scaled, not refitted), a capsule, and the
+        // two-part shape stretched per axis.
+        Shape::cuboid(Vec3::splat(0.5 * s)).unwrap().scaled(Vec3::new(0.6, 1.8, 1.0)).unwrap(),
+        Shape::convex(&small).unwrap().scaled(Vec3::splat(1.5)).unwrap(),
+        Shape::capsule(0.3 * s, 0.5 * s).unwrap().scaled(Vec3::splat(0.8)).unwrap(),
+        Shape::from_meshes(&[two, right], FitOptions::default())
+            .unwrap()
+            .scaled(Vec3::new(1.0, 0.5, 2.0))
+            .unwrap(),
     ]
     .into_iter()
     .map(Arc::new)
@@ -325,7 +336,11 @@ fn own_thread_pools_give_the_default_events() {
     let default = sleepers_scene(WorldConfig::default());
     assert!(default.0.len() > 1000 && default.1 > 10);
     for threads in [1, 2] {
-        assert_eq!(sleepers_scene(WorldConfig { threads: Some(threads) }), default, "{threads}");
+        assert_eq!(
+            sleepers_scene(WorldConfig::default().with_threads(threads)),
+            default,
+            "{threads}"
+        );
     }
 }
 
@@ -333,10 +348,10 @@ fn own_thread_pools_give_the_default_events() {
 fn bad_thread_counts_are_typed_errors() {
     assert_eq!(World::new().config(), &WorldConfig::default());
     assert_eq!(WorldConfig::default().threads, None);
-    let one = WorldConfig { threads: Some(1) };
+    let one = WorldConfig::default().with_threads(1);
     assert_eq!(World::with_config(one).unwrap().config(), &one);
     for threads in [0, WorldConfig::MAX_THREADS + 1, usize::MAX] {
-        let got = World::with_config(WorldConfig { threads: Some(threads) });
+        let got = World::with_config(WorldConfig::default().with_threads(threads));
         assert_eq!(got.err(), Some(WorldError::BadThreads { threads }));
     }
 }
