@@ -179,7 +179,7 @@ impl Shape {
         }
         let polyhedron = Polyhedron::cuboid(half_extents)
             .map_err(|reason| ShapeError::Part { part: "cuboid".into(), reason })?;
-        let hull = ConvexHull::new(polyhedron.vertices())?;
+        let hull = ConvexHull::cuboid(half_extents)?;
         Self::from_parts(
             vec![Part::Hull(Box::new(HullPart { polyhedron, hull }))],
             FitOptions::default(),

@@ -86,18 +86,22 @@ impl PartKind for HullPart {
     /// any other hull rebuilt from its vertices scaled (an affine map keeps
     /// a convex hull's vertices its vertices).
     fn scaled(&self, factor: Vec3) -> Result<HullPart, ShapeError> {
-        let polyhedron = match &self.polyhedron.box_shape {
-            Some((half, _)) => Polyhedron::cuboid(half.as_vec3() * factor)?,
+        // The polyhedron's vertices are finite and span a solid: what a hull
+        // of them needs.
+        let hull_error = |_| ShapeError::Empty;
+        match &self.polyhedron.box_shape {
+            Some((half, _)) => {
+                let half = half.as_vec3() * factor;
+                let hull = ConvexHull::cuboid(half).map_err(hull_error)?;
+                Ok(HullPart { polyhedron: Polyhedron::cuboid(half)?, hull })
+            }
             None => {
                 let vertices: Vec<Vec3> =
                     self.polyhedron.vertices().iter().map(|&v| v * factor).collect();
-                Polyhedron::from_points(&vertices)?
+                let hull = ConvexHull::new(&vertices).map_err(hull_error)?;
+                Ok(HullPart { polyhedron: Polyhedron::from_hull(&hull)?, hull })
             }
-        };
-        // The polyhedron's vertices are finite and span a solid: what a hull
-        // of them needs.
-        let hull = ConvexHull::new(polyhedron.vertices()).map_err(|_| ShapeError::Empty)?;
-        Ok(HullPart { polyhedron, hull })
+        }
     }
 
     /// The exact integrals over the polyhedron, in f64: the solid cut into

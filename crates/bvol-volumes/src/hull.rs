@@ -18,6 +18,8 @@ mod planar;
 mod predicates;
 mod quickhull;
 
+use std::sync::OnceLock;
+
 use glam::{DVec3, Vec3};
 
 use crate::FitError;
@@ -137,6 +139,53 @@ impl ConvexHull {
             }
             None => Ok(Self::flat(&centred, normal, axis)),
         }
+    }
+
+    /// The hull of the box `[-half_extents, half_extents]`: its 8 corners
+    /// (corner `i` on the positive side of x, y, z as bits 0, 1, 2 of `i`
+    /// are set) and 6 square faces, as [`new`](Self::new) builds it from
+    /// those corners, without building it: the unit cube's hull, made once,
+    /// scaled. Half extents that are not all finite and within
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), or a box within a few
+    /// tolerances of flat, go through `new` and take its answer (an error,
+    /// or a flat, segment or point hull).
+    ///
+    /// ```
+    /// use bvol_volumes::ConvexHull;
+    /// use glam::Vec3;
+    /// let plank = ConvexHull::cuboid(Vec3::new(2.0, 0.1, 0.5))?;
+    /// assert_eq!((plank.dimension(), plank.vertices().len(), plank.face_count()), (3, 8, 6));
+    /// assert!((plank.volume() - 0.8).abs() < 1e-12);
+    /// # Ok::<(), bvol_volumes::FitError>(())
+    /// ```
+    pub fn cuboid(half_extents: Vec3) -> Result<ConvexHull, FitError> {
+        let corners = box_corners(half_extents);
+        if crate::error::check_points(&corners).is_err() {
+            return ConvexHull::new(&corners);
+        }
+        // A box thin within the tolerance is flat to `new`, and one near
+        // that is left to it too, whose merging decides such slivers.
+        let tolerance = CentredPoints::new(&corners).eps;
+        if f64::from(half_extents.min_element()) * 2.0 <= 16.0 * tolerance {
+            return ConvexHull::new(&corners);
+        }
+        static UNIT: OnceLock<ConvexHull> = OnceLock::new();
+        let unit = UNIT.get_or_init(|| {
+            ConvexHull::new(&box_corners(Vec3::ONE)).expect("a unit cube's corners have a hull")
+        });
+        let half = half_extents.as_dvec3();
+        Ok(ConvexHull {
+            // The unit cube's vertices are its corners in input order.
+            vertices: corners,
+            face_vertices: unit.face_vertices.clone(),
+            face_starts: unit.face_starts.clone(),
+            // Scaling along the axes keeps the faces' axis normals; each
+            // face's plane moves out to the half extent along its normal.
+            normals: unit.normals.clone(),
+            offsets: unit.normals.iter().map(|n| n.abs().dot(half)).collect(),
+            dimension: 3,
+            tolerance,
+        })
     }
 
     /// The hull of a set whose points all coincide.
@@ -370,4 +419,11 @@ fn widest_axis_extremes(centred: &CentredPoints) -> (u32, u32) {
         }
     }
     (best.0, best.1)
+}
+
+/// The corners of the box `[-half, half]`: corner `i` on the positive side
+/// of x, y and z where bits 0, 1 and 2 of `i` are set.
+fn box_corners(half: Vec3) -> Vec<Vec3> {
+    let sign = |i: usize, bit: usize| if i & (1 << bit) == 0 { -1.0 } else { 1.0 };
+    (0..8).map(|i| Vec3::new(sign(i, 0), sign(i, 1), sign(i, 2)) * half).collect()
 }

@@ -635,3 +635,60 @@ fn a_flat_hull_keeps_every_point_behind_its_faces() {
         }
     }
 }
+
+/// Each face's plane by its loop turned to start at its least vertex: a
+/// hull's faces whatever their order and starting corners.
+fn faces_by_loop(hull: &ConvexHull) -> HashMap<Vec<u32>, (DVec3, f64)> {
+    (0..hull.face_count())
+        .map(|f| {
+            let mut ring = hull.face(f).to_vec();
+            let least = (0..ring.len()).min_by_key(|&k| ring[k]).unwrap_or(0);
+            ring.rotate_left(least);
+            (ring, (hull.face_normal(f), hull.face_offset(f)))
+        })
+        .collect()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(2000))]
+
+    /// A box's hull in closed form is the hull quickhull builds from its
+    /// corners: the same vertices in the same order, the same face loops,
+    /// the same tolerance, and the same planes up to the last bits of
+    /// quickhull's normalising (the closed form's are exact: the axes and
+    /// the half extents); at any aspect from 1 to 1e12 and up to the
+    /// coordinate limit, and, for half extents that are not all positive,
+    /// finite and in range, the same answer.
+    #[test]
+    fn box_hulls_in_closed_form_equal_quickhulls(
+        exponents in prop::array::uniform3(-6.0f64..6.0),
+        special in prop::option::of((0..3usize, prop::sample::select(vec![
+            0.0f32, -1.0, f32::NAN, f32::INFINITY, 1e18, 2e18, f32::MIN_POSITIVE,
+        ]))),
+    ) {
+        let mut half = Vec3::from_array(exponents.map(|e| 10f64.powf(e) as f32));
+        if let Some((axis, value)) = special {
+            half[axis] = value;
+        }
+        let sign = |i: usize, bit: usize| if i & (1 << bit) == 0 { -1.0 } else { 1.0 };
+        let corners: Vec<Vec3> =
+            (0..8).map(|i| Vec3::new(sign(i, 0), sign(i, 1), sign(i, 2)) * half).collect();
+        match (ConvexHull::cuboid(half), ConvexHull::new(&corners)) {
+            (Ok(closed), Ok(built)) => {
+                prop_assert_eq!(closed.dimension(), built.dimension());
+                prop_assert_eq!(closed.vertices(), built.vertices());
+                prop_assert_eq!(closed.tolerance(), built.tolerance());
+                let (closed, built) = (faces_by_loop(&closed), faces_by_loop(&built));
+                prop_assert_eq!(closed.len(), built.len());
+                for (ring, (n, offset)) in &closed {
+                    let Some(&(m, other)) = built.get(ring) else {
+                        return Err(TestCaseError::fail(format!("face {ring:?} not in quickhull's")));
+                    };
+                    prop_assert!((*n - m).abs().max_element() <= 4.0 * f64::EPSILON, "{n} {m}");
+                    prop_assert!((offset - other).abs() <= 4.0 * f64::EPSILON * offset.abs());
+                }
+            }
+            (closed, built) => prop_assert_eq!(closed.err(), built.err()),
+        }
+    }
+}
