@@ -26,16 +26,32 @@ pub enum SceneKind {
     Pile,
     /// Uniform, with 1% of the bodies jumping anywhere each frame.
     Teleport,
+    /// One layer of boxes resting side by side on a floor, each overlapping
+    /// its eight neighbours a little (about four pairs a body, as a crowd
+    /// or debris on flat ground), 1% of them sliding across the others.
+    Flat,
+    /// Bodies dropped over a floor a quarter of the pile's side, so that
+    /// the heap grows sixteen times as tall.
+    Heap,
+    /// A static ground of flat tiles, eight bodies wide, and unit bodies
+    /// drifting along it, half of them sunk into it: a static tree's case.
+    Ground,
+    /// Uniform, moving up to three times their size each frame.
+    Fast,
 }
 
 impl SceneKind {
     /// Every scene.
-    pub const ALL: [SceneKind; 5] = [
+    pub const ALL: [SceneKind; 9] = [
         SceneKind::Uniform,
         SceneKind::Clustered,
         SceneKind::Mixed,
         SceneKind::Pile,
         SceneKind::Teleport,
+        SceneKind::Flat,
+        SceneKind::Heap,
+        SceneKind::Ground,
+        SceneKind::Fast,
     ];
 
     /// The scene's name on the command line.
@@ -46,6 +62,10 @@ impl SceneKind {
             SceneKind::Mixed => "mixed",
             SceneKind::Pile => "pile",
             SceneKind::Teleport => "teleport",
+            SceneKind::Flat => "flat",
+            SceneKind::Heap => "heap",
+            SceneKind::Ground => "ground",
+            SceneKind::Fast => "fast",
         }
     }
 }
@@ -72,6 +92,11 @@ const HALF: f32 = 0.5;
 const SPEED: f32 = 0.05;
 /// Downward speed gained per frame in the pile.
 const GRAVITY: f32 = 0.02;
+/// The flat layer's spacing, as a share of a body's width: neighbours
+/// overlap by 2% of it.
+const FLAT_SPACING: f32 = 0.98;
+/// Distance a fast body moves per frame, at most: three body widths.
+const FAST_SPEED: f32 = 6.0 * HALF;
 
 /// A running scene: call [`Scene::step`] for each frame's boxes.
 ///
@@ -89,6 +114,9 @@ pub struct Scene {
     rng: SmallRng,
     /// Side of the world cube (the pile's floor is `side` by `side`).
     side: f32,
+    /// The far corner of the region bodies drift in, from the origin: the
+    /// world cube, or the flat layer's extent.
+    extent: Vec3,
     centres: Vec<Vec3>,
     velocities: Vec<Vec3>,
     halves: Vec<Vec3>,
@@ -113,6 +141,13 @@ impl Scene {
                 *h = Vec3::splat(20.0 * HALF);
             }
         }
+        let ground = ground_side(n);
+        let tiles = ground_tiles(n);
+        let tile = ground / (2.0 * tiles.max(1) as f32);
+        if kind == SceneKind::Ground {
+            halves[..tiles * tiles].fill(Vec3::new(tile, HALF, tile));
+        }
+        let row = flat_row(n);
         let clusters = (0..16)
             .map(|_| (random_in(&mut rng, side * 0.15, side * 0.85), random_dir(&mut rng) * SPEED))
             .collect::<Vec<_>>();
@@ -122,26 +157,53 @@ impl Scene {
                     let c = clusters[i % clusters.len()].0;
                     (c + gaussian3(&mut rng) * side * 0.04).clamp(Vec3::ZERO, Vec3::splat(side))
                 }
-                SceneKind::Pile => {
+                SceneKind::Pile | SceneKind::Heap => {
                     // Dropped in index order from rising heights: all fall alike, so
                     // lower bodies land first and the stacks build from the floor.
-                    let p = random_in(&mut rng, 0.0, side);
+                    let p = random_in(&mut rng, 0.0, floor_side(kind, side));
                     Vec3::new(p.x, 2.0 * HALF + 2.0 * side * i as f32 / n as f32, p.z)
+                }
+                SceneKind::Flat => {
+                    let step = FLAT_SPACING * 2.0 * HALF;
+                    let jitter = random_in(&mut rng, -0.005, 0.005);
+                    let cell = Vec3::new((i % row) as f32, 0.0, (i / row) as f32);
+                    cell * step + Vec3::new(jitter.x, HALF, jitter.z)
+                }
+                SceneKind::Ground if i < tiles * tiles => {
+                    let cell = Vec3::new((i % tiles) as f32, 0.0, (i / tiles) as f32);
+                    cell * 2.0 * tile + Vec3::new(tile, -HALF, tile)
+                }
+                SceneKind::Ground => {
+                    let p = random_in(&mut rng, 0.0, ground);
+                    Vec3::new(p.x, rng.random::<f32>() * 2.0 * HALF, p.z)
                 }
                 _ => random_in(&mut rng, 0.0, side),
             })
             .collect();
         let velocities = (0..n)
-            .map(|_| match kind {
-                SceneKind::Pile => Vec3::ZERO,
+            .map(|i| match kind {
+                SceneKind::Pile | SceneKind::Heap => Vec3::ZERO,
+                SceneKind::Flat if i % 100 != 0 => Vec3::ZERO,
+                SceneKind::Ground if i < tiles * tiles => Vec3::ZERO,
+                SceneKind::Flat | SceneKind::Ground => {
+                    flat_dir(&mut rng) * SPEED * rng.random::<f32>()
+                }
+                SceneKind::Fast => random_dir(&mut rng) * FAST_SPEED * rng.random::<f32>(),
                 _ => random_dir(&mut rng) * SPEED * rng.random::<f32>(),
             })
             .collect();
-        let cells = pile_cells(side);
+        let cells = pile_cells(floor_side(kind, side));
+        let layer = row as f32 * FLAT_SPACING * 2.0 * HALF;
+        let extent = match kind {
+            SceneKind::Flat => Vec3::new(layer, side, layer),
+            SceneKind::Ground => Vec3::new(ground, side, ground),
+            _ => Vec3::splat(side),
+        };
         Scene {
             kind,
             rng,
             side,
+            extent,
             centres,
             velocities,
             halves,
@@ -162,7 +224,7 @@ impl Scene {
     pub fn step(&mut self) -> &[Aabb] {
         if self.frame > 0 {
             match self.kind {
-                SceneKind::Pile => self.fall(),
+                SceneKind::Pile | SceneKind::Heap => self.fall(),
                 SceneKind::Clustered => self.drift_clusters(),
                 _ => self.drift(),
             }
@@ -177,15 +239,15 @@ impl Scene {
         &self.boxes
     }
 
-    /// Straight-line motion, bouncing off the walls of the world cube.
+    /// Straight-line motion, bouncing off the walls of the region.
     fn drift(&mut self) {
-        let side = self.side;
+        let extent = self.extent;
         for (c, v) in self.centres.iter_mut().zip(&mut self.velocities) {
             *c += *v;
             for axis in 0..3 {
-                if c[axis] < 0.0 || c[axis] > side {
+                if c[axis] < 0.0 || c[axis] > extent[axis] {
                     v[axis] = -v[axis];
-                    c[axis] = c[axis].clamp(0.0, side);
+                    c[axis] = c[axis].clamp(0.0, extent[axis]);
                 }
             }
         }
@@ -212,8 +274,9 @@ impl Scene {
     /// its centre's floor cell; then it rests. Columns stack independently, so
     /// bodies in a column land in the order they were dropped.
     fn fall(&mut self) {
-        let cells = pile_cells(self.side);
-        let cell = self.side / cells as f32;
+        let floor = floor_side(self.kind, self.side);
+        let cells = pile_cells(floor);
+        let cell = floor / cells as f32;
         let index = |v: f32| ((v / cell).max(0.0) as usize).min(cells - 1);
         for i in 0..self.centres.len() {
             if self.resting[i] {
@@ -242,6 +305,36 @@ impl Scene {
             self.centres[i] = random_in(&mut self.rng, 0.0, self.side);
         }
     }
+}
+
+/// The side of the floor bodies fall on: the world's for the pile, a
+/// quarter of it for the heap.
+fn floor_side(kind: SceneKind, side: f32) -> f32 {
+    if kind == SceneKind::Heap { side / 4.0 } else { side }
+}
+
+/// Bodies per row of the flat layer: a square.
+fn flat_row(n: usize) -> usize {
+    (n as f64).sqrt().ceil().max(1.0) as usize
+}
+
+/// The side of the ground: room for the bodies in a layer two wide at the
+/// uniform scene's density (one pair a body).
+fn ground_side(n: usize) -> f32 {
+    (2.0 * n as f32).sqrt() * 2.0 * HALF
+}
+
+/// Ground tiles per side: eight body widths each, at most half the bodies
+/// in all.
+fn ground_tiles(n: usize) -> usize {
+    let wide = (ground_side(n) / (16.0 * HALF)).round() as usize;
+    wide.min(((n / 2) as f64).sqrt() as usize)
+}
+
+/// A random direction along the floor.
+fn flat_dir(rng: &mut SmallRng) -> Vec3 {
+    let g = gaussian3(rng);
+    Vec3::new(g.x, 0.0, g.z).try_normalize().unwrap_or(Vec3::X)
 }
 
 /// Floor cells per side of the pile: one per body width.

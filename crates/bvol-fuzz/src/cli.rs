@@ -149,8 +149,19 @@ fn arguments(mut u: Unstructured) -> Result<(Vec<String>, Vec<String>)> {
             args.extend(["--frames".into(), number(u, 0..=4)?]);
         }
         2 => {
-            let scene =
-                *u.choose(&["uniform", "clustered", "mixed", "pile", "teleport", "flat", ""])?;
+            let scene = *u.choose(&[
+                "uniform",
+                "clustered",
+                "mixed",
+                "pile",
+                "teleport",
+                "flat",
+                "heap",
+                "ground",
+                "fast",
+                "wavy",
+                "",
+            ])?;
             args.extend(["bench", "pairs", "--scene", scene].map(String::from));
             args.extend(["--n".into(), number(u, 0..=300)?, "--frames".into(), number(u, 0..=4)?]);
             args.extend(["--seed".into(), number(u, 0..=u64::MAX)?]);

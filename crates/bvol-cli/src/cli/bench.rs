@@ -17,7 +17,8 @@ use indicatif::{ProgressBar, ProgressStyle};
 /// Where the frames come from.
 #[derive(Args, Debug)]
 pub struct PairsArgs {
-    /// A generated scene: uniform, clustered, mixed, pile or teleport.
+    /// A generated scene: uniform, clustered, mixed, pile, teleport, flat,
+    /// heap, ground or fast.
     #[arg(long, default_value = "uniform", conflicts_with = "load")]
     scene: SceneKind,
     /// Bodies in the generated scene.
