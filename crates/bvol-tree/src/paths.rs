@@ -150,6 +150,12 @@ impl<B: Bound> Tree<B> {
                 let cost = self.sah_cost();
                 self.policy.rebase(cost);
             }
+            Next::Rebuild => {
+                // Mass motion: the jumps took their new bounds above.
+                self.rebuild();
+                self.changes.mark_all();
+                stats.rebuilt = self.len;
+            }
         }
     }
 }

@@ -28,6 +28,10 @@
 //!   steps a frame.
 //! - **One go.** Only if one leaf in [`MANY_JUMPS`] is stale even so is the
 //!   tree rebuilt in one go, in place of the install.
+//! - **Outrun.** When mass motion stretches the tree so far that its cost
+//!   is [`DRIFT_AT_ONCE`] drifts above the last build's, it is rebuilt in
+//!   one go at once: bodies moving several times their size a frame would
+//!   outrun any staged build.
 //! - **Mass motion during a build.** Its jumps are not noted: the topology
 //!   is installed as it is, its cost is no baseline, and the next build
 //!   starts at once; so does one more if leaves still jump during that one
@@ -41,7 +45,7 @@ use crate::config::Config;
 use crate::leaves::Leaves;
 use crate::node::Ref;
 use crate::staged::{STAGED_FRAMES, Staged};
-use crate::tuning::{DRIFT_STAGED, MANY_JUMPS, TRICKLE_PACE};
+use crate::tuning::{DRIFT_AT_ONCE, DRIFT_STAGED, MANY_JUMPS, TRICKLE_PACE};
 
 /// The update policy's state (see the module docs).
 #[derive(Clone, Debug, Default)]
@@ -100,6 +104,9 @@ pub(crate) enum Next {
     /// The tree's SAH cost as it is now is the new baseline
     /// ([`Policy::rebase`]).
     Rebase,
+    /// The tree is rebuilt in one go now: mass motion outran the builds
+    /// ([`DRIFT_AT_ONCE`]).
+    Rebuild,
 }
 
 impl<B: Bound> Policy<B> {
@@ -199,6 +206,9 @@ impl<B: Bound> Policy<B> {
         len: usize,
     ) -> Next {
         let drifted = |share: f64| cost > self.built_cost * (1.0 + config.drift * share);
+        if mass && drifted(DRIFT_AT_ONCE) {
+            return Next::Rebuild;
+        }
         match installed {
             Some(Install::Rebuild) => Next::Wait,
             Some(Install::Topology { stale: None, .. }) => Next::Step { after_mass: true },

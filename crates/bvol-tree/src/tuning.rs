@@ -13,6 +13,16 @@
 /// rebuilding the tree in one go, so the rebuild then takes fewer frames.
 pub(crate) const MANY_JUMPS: usize = 16;
 
+/// In a frame of mass motion whose refit finds the SAH cost this many
+/// times [`Config::drift`](crate::Config::drift) above its cost after the
+/// last build, the tree is rebuilt in one go at once. Bodies that keep
+/// moving several times their size a frame (debris from an explosion, a
+/// fast swarm) outrun a staged build: its topology places them where they
+/// were frames before, and the tree's cost, and the pair search's with it,
+/// grows without end (the `fast` scene's frames rose past a second). Bodies
+/// falling onto a pile stretch it far less, and stay with the staged builds.
+pub(crate) const DRIFT_AT_ONCE: f64 = 4.0;
+
 /// A staged rebuild starts when the SAH cost has drifted this fraction of
 /// [`Config::drift`](crate::Config::drift) above its cost after the last
 /// build: the tree drifts on while the build runs, and its topology places
