@@ -223,13 +223,10 @@ impl Polyhedron {
     pub(crate) fn unit_cube() -> &'static Polyhedron {
         static CUBE: OnceLock<Polyhedron> = OnceLock::new();
         CUBE.get_or_init(|| {
-            let corners: Vec<Vec3> = (0..8)
-                .map(|i| {
-                    let s = |bit: u32| if i & bit == 0 { -1.0 } else { 1.0 };
-                    Vec3::new(s(1), s(2), s(4))
-                })
-                .collect();
-            Polyhedron::from_points(&corners).expect("eight cube corners span a solid")
+            // The box hull's corner order, which `Shape::cuboid` pairs with
+            // this cube scaled.
+            let hull = ConvexHull::cuboid(Vec3::ONE).expect("a unit cube has a hull");
+            Polyhedron::from_hull(&hull).expect("eight cube corners span a solid")
         })
     }
 }
