@@ -173,20 +173,13 @@ pub(crate) fn integers(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<u64>>
             tuple_text(array.shape())
         )));
     }
-    let values: Vec<i128> = if let Ok(a) = obj.cast::<PyArray1<u64>>() {
-        a.readonly().as_array().iter().map(|&v| i128::from(v)).collect()
-    } else if let Ok(a) = obj.cast::<PyArray1<i64>>() {
-        a.readonly().as_array().iter().map(|&v| i128::from(v)).collect()
-    } else if let Ok(a) = obj.cast::<PyArray1<u32>>() {
-        a.readonly().as_array().iter().map(|&v| i128::from(v)).collect()
-    } else if let Ok(a) = obj.cast::<PyArray1<i32>>() {
-        a.readonly().as_array().iter().map(|&v| i128::from(v)).collect()
-    } else {
-        return Err(PyTypeError::new_err(format!(
-            "{name}: expected integers, got {}",
-            array.dtype()
-        )));
-    };
+    let values = widened::<u64>(obj)
+        .or_else(|| widened::<i64>(obj))
+        .or_else(|| widened::<u32>(obj))
+        .or_else(|| widened::<i32>(obj))
+        .ok_or_else(|| {
+            PyTypeError::new_err(format!("{name}: expected integers, got {}", array.dtype()))
+        })?;
     values
         .iter()
         .enumerate()
@@ -195,4 +188,11 @@ pub(crate) fn integers(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<u64>>
                 .map_err(|_| PyValueError::new_err(format!("{name}[{i}] = {v}: negative")))
         })
         .collect()
+}
+
+/// The values of `obj` if it is a one-dimensional array of `T`, each
+/// widened to `i128`, which holds every integer dtype read here.
+fn widened<T: numpy::Element + Copy + Into<i128>>(obj: &Bound<'_, PyAny>) -> Option<Vec<i128>> {
+    let array = obj.cast::<PyArray1<T>>().ok()?;
+    Some(array.readonly().as_array().iter().map(|&v| v.into()).collect())
 }

@@ -1,7 +1,7 @@
 //! Tests on arrays of bounds, row against row, in one call: overlap masks
 //! and ray entry distances, without a Python loop and without the GIL.
 
-use bvol::glam::{Mat3, Vec3};
+use bvol::glam::Mat3;
 use bvol::volumes::{Obb, Ray, Sphere};
 use numpy::PyArray1;
 use pyo3::exceptions::PyValueError;
@@ -12,6 +12,9 @@ use crate::arrays::{Floats, floats, same_rows, vectors};
 /// How far from orthonormal a box's axes may be: float32 rotations that
 /// went through a few products.
 const AXES_TOLERANCE: f32 = 1e-4;
+
+/// Why a row with a NaN or an infinity is refused.
+const NOT_FINITE: &str = "NaN or infinite value";
 
 /// Whether sphere `i` of A overlaps (or touches) sphere `i` of B, for
 /// every row: an (M,) bool array. Centres are (M, 3) arrays, radii (M,).
@@ -65,7 +68,7 @@ pub(crate) fn ray_spheres<'py>(
     radii: &Bound<'py, PyAny>,
     max_t: f32,
 ) -> PyResult<Bound<'py, PyArray1<f32>>> {
-    let rays = rays(origins, directions)?;
+    let rays = finite_rays(origins, directions)?;
     let spheres = spheres(("centers", centers), ("radii", radii))?;
     same_rows(&["origins", "centers"], &[rays.len(), spheres.len()])?;
     check_max_t(max_t)?;
@@ -86,7 +89,7 @@ pub(crate) fn ray_boxes<'py>(
     half_extents: &Bound<'py, PyAny>,
     max_t: f32,
 ) -> PyResult<Bound<'py, PyArray1<f32>>> {
-    let rays = rays(origins, directions)?;
+    let rays = finite_rays(origins, directions)?;
     let boxes = boxes(["centers", "axes", "half_extents"], [centers, axes, half_extents])?;
     same_rows(&["origins", "centers"], &[rays.len(), boxes.len()])?;
     check_max_t(max_t)?;
@@ -128,8 +131,8 @@ fn boxes(
     let centers = vectors(names[0], centers)?;
     let axes = floats(names[1], axes, &[3, 3])?;
     let half_extents = vectors(names[2], half_extents)?;
-    let (centers, half_extents) = (centers_checked(names[0], &centers)?, half_extents);
-    let axes = axes.rows::<9>();
+    finite(names[0], &centers)?;
+    let (centers, axes) = (centers.vectors(), axes.rows::<9>());
     same_rows(&names, &[centers.len(), axes.len(), half_extents.vectors().len()])?;
     let mut boxes = Vec::with_capacity(centers.len());
     for (i, ((&center, rows), &half)) in
@@ -147,27 +150,35 @@ fn boxes(
     Ok(boxes)
 }
 
-/// The rows of `centers`, every one finite.
-fn centers_checked<'a>(name: &str, centers: &'a Floats<'_>) -> PyResult<&'a [Vec3]> {
-    finite(name, centers)?;
-    Ok(centers.vectors())
-}
-
-/// Rays from their origins and directions.
-fn rays(origins: &Bound<'_, PyAny>, directions: &Bound<'_, PyAny>) -> PyResult<Vec<Ray>> {
+/// Rays from their (R, 3) origins and directions, as given: a ray with a
+/// NaN or infinity hits nothing.
+pub(crate) fn rays(
+    origins: &Bound<'_, PyAny>,
+    directions: &Bound<'_, PyAny>,
+) -> PyResult<Vec<Ray>> {
     let origins = vectors("origins", origins)?;
     let directions = vectors("directions", directions)?;
     same_rows(&["origins", "directions"], &[origins.vectors().len(), directions.vectors().len()])?;
-    finite("origins", &origins)?;
-    finite("directions", &directions)?;
     Ok(origins.vectors().iter().zip(directions.vectors()).map(|(&o, &d)| Ray::new(o, d)).collect())
+}
+
+/// Rays as [`rays`] reads them, every one finite.
+fn finite_rays(origins: &Bound<'_, PyAny>, directions: &Bound<'_, PyAny>) -> PyResult<Vec<Ray>> {
+    let rays = rays(origins, directions)?;
+    if let Some(i) = rays.iter().position(|r| !r.origin.is_finite()) {
+        return Err(bad_row("origins", i, NOT_FINITE));
+    }
+    if let Some(i) = rays.iter().position(|r| !r.direction.is_finite()) {
+        return Err(bad_row("directions", i, NOT_FINITE));
+    }
+    Ok(rays)
 }
 
 /// An error naming the first row of `rows` with a NaN or infinity.
 fn finite(name: &str, rows: &Floats<'_>) -> PyResult<()> {
     match rows.vectors().iter().position(|v| !v.is_finite()) {
         None => Ok(()),
-        Some(i) => Err(bad_row(name, i, "NaN or infinite value")),
+        Some(i) => Err(bad_row(name, i, NOT_FINITE)),
     }
 }
 

@@ -86,17 +86,10 @@ bound_methods! {
         PyArray1::from_slice(py, &self.0.half_extents.to_array())
     }
 
-    /// The eight corners, an (8, 3) float32 array.
+    /// The eight corners, an (8, 3) float32 array: corner `i` on the
+    /// positive side of axis 0, 1 and 2 where bit 0, 1 and 2 of `i` are set.
     fn corners<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<f32>> {
-        let obb = &self.0;
-        let corners: Vec<Vec3> = (0..8)
-            .map(|i| {
-                let sign = |bit: usize| if i & (1 << bit) == 0 { -1.0 } else { 1.0 };
-                let local = Vec3::new(sign(0), sign(1), sign(2)) * obb.half_extents;
-                obb.center + obb.axes * local
-            })
-            .collect();
-        vector_array(py, &corners)
+        vector_array(py, &self.0.corners_f64().map(|c| c.as_vec3()))
     }
 
     fn __repr__(&self) -> String {

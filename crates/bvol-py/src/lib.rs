@@ -38,10 +38,12 @@ mod _bvol {
     #[pymodule_init]
     fn init(m: &Bound<'_, PyModule>) -> PyResult<()> {
         m.add("NO_BODY", crate::world::NO_BODY)?;
+        for (name, kind) in crate::world::EVENT_KINDS {
+            m.add(name, crate::world::event_code(kind))?;
+        }
         m.add("MAX_COORDINATE", bvol::MAX_COORDINATE)?;
-        let names = |all: &[&'static str]| all.to_vec();
-        m.add("SPHERE_METHODS", names(&sphere_names()))?;
-        m.add("OBB_METHODS", names(&obb_names()))?;
+        m.add("SPHERE_METHODS", sphere_names())?;
+        m.add("OBB_METHODS", obb_names())?;
         Ok(())
     }
 

@@ -1,10 +1,10 @@
 //! The World: bodies, their poses, and what touches, in numpy arrays.
 
-use bvol::glam::{Quat, Vec3};
-use bvol::narrow::MAX_POINTS;
-use bvol::volumes::{Pose, Ray};
 use std::sync::Arc;
 
+use bvol::glam::{Quat, Vec3};
+use bvol::narrow::MAX_POINTS;
+use bvol::volumes::Pose;
 use bvol::{
     BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, World, WorldConfig, WorldError,
 };
@@ -13,15 +13,30 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyTuple};
 
-use crate::arrays::{
-    Array1, Floats, floats, integers, rows_array, same_rows, vector_array, vectors,
-};
-use crate::batch::check_max_t;
+use crate::arrays::{Array1, floats, integers, rows_array, same_rows, vector_array, vectors};
+use crate::batch::{check_max_t, rays};
 use crate::errors::world_error;
 use crate::shape::PyShape;
 
 /// The id that names no body: where a ray met nothing.
 pub(crate) const NO_BODY: u64 = u64::MAX;
+
+/// The event kinds by the names Python gives them (module constants
+/// holding their [`event_code`]).
+pub(crate) const EVENT_KINDS: [(&str, EventKind); 3] = [
+    ("BEGAN", EventKind::Began),
+    ("PERSISTING", EventKind::Persisting),
+    ("ENDED", EventKind::Ended),
+];
+
+/// An event kind's number in the arrays.
+pub(crate) fn event_code(kind: EventKind) -> u8 {
+    match kind {
+        EventKind::Began => 0,
+        EventKind::Persisting => 1,
+        EventKind::Ended => 2,
+    }
+}
 
 /// Bodies and what touches among them (the Python half adds `events` and
 /// `ray_cast`, which answer in structured arrays).
@@ -236,16 +251,9 @@ impl PyWorld {
         max_t: f32,
     ) -> PyResult<Bound<'py, PyDict>> {
         check_max_t(max_t)?;
-        let origins = vectors("origins", origins)?;
-        let directions = vectors("directions", directions)?;
-        let n = same_rows(
-            &["origins", "directions"],
-            &[origins.vectors().len(), directions.vectors().len()],
-        )?;
+        let rays = rays(origins, directions)?;
         let world = &self.world;
-        let rays = origins.vectors().iter().zip(directions.vectors());
-        let hits: Vec<_> =
-            py.detach(|| rays.map(|(&o, &d)| world.ray_cast(&Ray::new(o, d), max_t)).collect());
+        let hits: Vec<_> = py.detach(|| rays.iter().map(|r| world.ray_cast(r, max_t)).collect());
         let dict = PyDict::new(py);
         let id = |h: &Option<bvol::RayHit>| h.map_or(NO_BODY, |h| h.body.to_bits());
         let t = |h: &Option<bvol::RayHit>| h.map_or(f32::INFINITY, |h| h.t);
@@ -256,7 +264,6 @@ impl PyWorld {
         dict.set_item("t", PyArray1::from_vec(py, hits.iter().map(t).collect()))?;
         dict.set_item("point", vector_array(py, &hits.iter().map(point).collect::<Vec<_>>()))?;
         dict.set_item("user_data", PyArray1::from_vec(py, hits.iter().map(data).collect()))?;
-        debug_assert_eq!(hits.len(), n);
         Ok(dict)
     }
 }
@@ -314,11 +321,7 @@ impl EventColumns {
 
     /// Adds an event; an ended one has a zero normal, depth and no points.
     fn push(&mut self, event: &bvol::ContactEvent) {
-        self.kind.push(match event.kind {
-            EventKind::Began => 0,
-            EventKind::Persisting => 1,
-            EventKind::Ended => 2,
-        });
+        self.kind.push(event_code(event.kind));
         self.ids.push([event.a.to_bits(), event.b.to_bits()]);
         self.user_data.push([event.user_data_a, event.user_data_b]);
         let (mut points, mut depths) = ([0.0; 3 * MAX_POINTS], [0.0; MAX_POINTS]);
@@ -409,7 +412,7 @@ fn poses_of(
     let Some(quaternions) = quaternions else {
         return Ok(positions.iter().map(|&p| Pose::new(p, Quat::IDENTITY)).collect());
     };
-    let quaternions: Floats<'_> = floats("quaternions", quaternions, &[4])?;
+    let quaternions = floats("quaternions", quaternions, &[4])?;
     let quaternions = quaternions.rows::<4>();
     same_rows(&["positions", "quaternions"], &[positions.len(), quaternions.len()])?;
     Ok(positions

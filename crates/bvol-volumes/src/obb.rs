@@ -125,7 +125,18 @@ impl Obb {
 
     /// The eight corners, exact in f64: the slab set's vertices, through the dual
     /// basis, so they hold even where the f32 axes are not exactly orthonormal.
-    pub(crate) fn corners_f64(&self) -> [DVec3; 8] {
+    /// Corner `i` is on the positive side of axis 0, 1 and 2 where bit 0, 1
+    /// and 2 of `i` are set.
+    ///
+    /// ```
+    /// use bvol_volumes::Obb;
+    /// use glam::{Mat3, Vec3};
+    /// let obb = Obb { center: Vec3::X, axes: Mat3::IDENTITY, half_extents: Vec3::new(1.0, 2.0, 3.0) };
+    /// let corners = obb.corners_f64();
+    /// assert_eq!(corners[0].to_array(), [0.0, -2.0, -3.0]);
+    /// assert_eq!(corners[7].to_array(), [2.0, 2.0, 3.0]);
+    /// ```
+    pub fn corners_f64(&self) -> [DVec3; 8] {
         let dual = self.axes.as_dmat3().transpose().inverse();
         let (c, h) = (self.center.as_dvec3(), self.half_extents.as_dvec3());
         std::array::from_fn(|i| {

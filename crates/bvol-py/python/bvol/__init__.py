@@ -27,9 +27,12 @@ from __future__ import annotations
 import numpy as np
 
 from ._bvol import (
+    BEGAN,
+    ENDED,
     MAX_COORDINATE,
     NO_BODY,
     OBB_METHODS,
+    PERSISTING,
     SPHERE_METHODS,
     Aabb,
     Kdop,
@@ -78,14 +81,6 @@ __all__ = [
     "ray_spheres",
     "spheres_overlap",
 ]
-
-#: An event's `kind`: the pair touches now and did not at the update before.
-BEGAN = 0
-#: An event's `kind`: the pair touched at the update before and still does.
-PERSISTING = 1
-#: An event's `kind`: the pair touched at the update before and does not now
-#: (or one of its bodies was removed); its contact fields are zero.
-ENDED = 2
 
 #: One contact event: what happened, the two bodies (`id_a` has the lower
 #: slot) and their user data, the unit normal from a to b, the depth, and up
@@ -155,6 +150,6 @@ class World(_NativeWorld):
         """
         columns = self._ray_columns(origins, directions, float(max_t))
         hits = np.empty(len(columns["hit"]), dtype=RAY_HIT_DTYPE)
-        for name in ("hit", "id", "t", "point", "user_data"):
+        for name in RAY_HIT_DTYPE.names or ():
             hits[name] = columns[name]
         return hits

@@ -15,12 +15,15 @@ _Pose = Tuple[_Vector3, _Quaternion]
 
 __all__ = [
     "Aabb",
+    "BEGAN",
+    "ENDED",
     "Kdop",
     "MAX_COORDINATE",
     "Mesh",
     "NO_BODY",
     "OBB_METHODS",
     "OrientedBox",
+    "PERSISTING",
     "SPHERE_METHODS",
     "Shape",
     "Sphere",
@@ -39,6 +42,13 @@ __all__ = [
 
 NO_BODY: int
 """The id that names no body: a ray hit's id where the ray met nothing."""
+BEGAN: int
+"""An event's kind: the pair touches now and did not at the update before."""
+PERSISTING: int
+"""An event's kind: the pair touched at the update before and still does."""
+ENDED: int
+"""An event's kind: the pair touched at the update before and does not now (or a
+body was removed); its contact fields are zero."""
 MAX_COORDINATE: float
 """The largest magnitude a coordinate may have."""
 SPHERE_METHODS: list[str]
