@@ -151,9 +151,10 @@ impl<B: Bound> Tree<B> {
                 self.policy.rebase(cost);
             }
             Next::Rebuild => {
-                // Mass motion: the jumps took their new bounds above.
+                // Mass motion: the jumps took their new bounds above, and
+                // the leaves that moved are marked; the new topology moves
+                // none, as an installed rebuild's does not.
                 self.rebuild();
-                self.changes.mark_all();
                 stats.rebuilt = self.len;
             }
         }

@@ -357,12 +357,12 @@ fn falling_boxes_are_refit_in_place_and_settle_into_a_fresh_tree() {
 /// one go once a refit finds it outrun, so its SAH cost stays within a few
 /// times a fresh build's (left to staged rebuilds, whose topologies place
 /// the boxes where they were frames before, it grew without end: 1.4 s
-/// frames on 100 000 boxes), and every frame is exact.
+/// frames on 100 000 boxes), and every frame's pairs and pair set are exact.
 #[test]
 fn boxes_faster_than_their_size_keep_the_tree_close_to_a_fresh_build() {
     let mut scene = Scene::<Aabb>::new(3000, 41);
     let world = scene.world;
-    let velocities: Vec<Vec3> = (0..scene.bounds.len())
+    let mut velocities: Vec<Vec3> = (0..scene.bounds.len())
         .map(|_| {
             let v = Vec3::new(
                 scene.rng.range(-1.0, 1.0),
@@ -372,8 +372,8 @@ fn boxes_faster_than_their_size_keep_the_tree_close_to_a_fresh_build() {
             v * 3.0
         })
         .collect();
-    let mut velocities = velocities;
     let mut tree = Tree::new();
+    let mut set = PairSet::new();
     let (mut worst, mut rebuilds) = (0.0f64, 0);
     for f in 0..40 {
         for (b, v) in scene.bounds.iter_mut().zip(&mut velocities) {
@@ -388,9 +388,11 @@ fn boxes_faster_than_their_size_keep_the_tree_close_to_a_fresh_build() {
         let frame = tree.update(&scene.bounds).unwrap();
         rebuilds += usize::from(frame.rebuilt > 0 && !frame.installed);
         tree.validate().unwrap();
-        let mut got = tree.pairs();
+        let (mut got, want) = (tree.pairs(), brute_pairs(&scene.leaves()));
         got.sort_unstable();
-        assert_eq!(got, brute_pairs(&scene.leaves()), "frame {f}");
+        assert_eq!(got, want, "frame {f}");
+        set.update(&mut tree);
+        assert_eq!(set.pairs(), &want[..], "frame {f}: the pair set");
         let cost = tree.sah_cost() / Tree::from_bounds(&scene.bounds).unwrap().sah_cost();
         worst = worst.max(cost);
     }
