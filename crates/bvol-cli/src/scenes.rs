@@ -148,6 +148,7 @@ impl Scene {
             halves[..tiles * tiles].fill(Vec3::new(tile, HALF, tile));
         }
         let row = flat_row(n);
+        let flat_step = FLAT_SPACING * 2.0 * HALF;
         let clusters = (0..16)
             .map(|_| (random_in(&mut rng, side * 0.15, side * 0.85), random_dir(&mut rng) * SPEED))
             .collect::<Vec<_>>();
@@ -164,10 +165,9 @@ impl Scene {
                     Vec3::new(p.x, 2.0 * HALF + 2.0 * side * i as f32 / n as f32, p.z)
                 }
                 SceneKind::Flat => {
-                    let step = FLAT_SPACING * 2.0 * HALF;
                     let jitter = random_in(&mut rng, -0.005, 0.005);
                     let cell = Vec3::new((i % row) as f32, 0.0, (i / row) as f32);
-                    cell * step + Vec3::new(jitter.x, HALF, jitter.z)
+                    cell * flat_step + Vec3::new(jitter.x, HALF, jitter.z)
                 }
                 SceneKind::Ground if i < tiles * tiles => {
                     let cell = Vec3::new((i % tiles) as f32, 0.0, (i / tiles) as f32);
@@ -193,7 +193,7 @@ impl Scene {
             })
             .collect();
         let cells = pile_cells(floor_side(kind, side));
-        let layer = row as f32 * FLAT_SPACING * 2.0 * HALF;
+        let layer = row as f32 * flat_step;
         let extent = match kind {
             SceneKind::Flat => Vec3::new(layer, side, layer),
             SceneKind::Ground => Vec3::new(ground, side, ground),
