@@ -117,9 +117,9 @@ pub(crate) fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(u
     cut(codes, mid, end, clusters);
 }
 
-/// Sorts `leaves` by the Morton code of their centres (in the box around
-/// the leaves, 10 bits per axis) with a stable LSD radix sort, and returns
-/// the sorted codes.
+/// Sorts `leaves` by the Morton code of their centres (in the [`Grid`] over
+/// the leaves' box) with a stable LSD radix sort, and returns the sorted
+/// codes.
 fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     // The box of the bounds, not of the centres: the grid a staged rebuild
     // takes from the root's bound, so that for boxes both builds make the
@@ -138,7 +138,8 @@ fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
     keyed.into_iter().map(|(c, _)| c).collect()
 }
 
-/// The Morton grid over a box (the leaves' bounds'): 2^10 cells per axis.
+/// The Morton grid over a box (the leaves' bounds'): 2^10 cubic cells
+/// along its longest axis.
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct Grid {
     lo: Vec3,
@@ -149,9 +150,15 @@ impl Grid {
     /// The grid over the box from `lo` to `hi`.
     pub(crate) fn new(lo: Vec3, hi: Vec3) -> Grid {
         let extent = hi - lo;
-        // A flat axis gets scale 0 (all its coordinates quantise to 0), and
-        // so does one too thin for its scale to be finite.
-        let scale = Vec3::splat(LAST_CELL) / extent;
+        // Cubic cells, sized by the longest axis: a thin axis gets as many
+        // cells as its length fills, not all 1024. Scaled to 1024 cells of
+        // its own, the height of bodies on a ground (a few body sizes
+        // against hundreds along the ground) took a third of every code's
+        // bits, and clusters came out a slice of height thin and tens of
+        // bodies wide: their bounds overlapped each other's over the whole
+        // layer, and a pair search visited five times the node pairs. A
+        // world of one point gets scale 0 (every code 0).
+        let scale = Vec3::splat(LAST_CELL / extent.max_element());
         let usable = extent.cmpgt(Vec3::ZERO) & scale.is_finite_mask();
         Grid { lo, scale: Vec3::select(usable, scale, Vec3::ZERO) }
     }
