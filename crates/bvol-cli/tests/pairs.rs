@@ -107,6 +107,42 @@ fn bench_pairs_reads_a_trace_and_prints_its_digest() {
     std::fs::remove_file(path).unwrap();
 }
 
+/// `--verbose` prints, apart from the one line of figures, a row per kind
+/// of frame whose counts add up to every frame after the first and to the
+/// pairs brute force finds in them.
+#[test]
+fn bench_pairs_verbose_accounts_for_every_frame() {
+    let trace = record(SceneKind::Teleport, 3_000, 12);
+    let path = std::env::temp_dir().join(format!("bvol-verbose-{}.bphf", std::process::id()));
+    trace.write(&path).unwrap();
+    let brute: usize =
+        (1..trace.frames()).map(|f| brute_digest(trace.frame(f)).count as usize).sum();
+    let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
+        .args(["bench", "pairs", "--load", path.to_str().unwrap(), "--verbose"])
+        .output()
+        .unwrap();
+    std::fs::remove_file(&path).unwrap();
+    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+    assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 2);
+    let table = String::from_utf8(out.stderr).unwrap();
+    let mut lines = table.lines();
+    let header: Vec<&str> = lines.next().unwrap().split('\t').collect();
+    assert_eq!(header[..2], ["frame_kind", "frames"]);
+    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
+    let (mut frames, mut pairs) = (0.0, 0.0);
+    for line in lines {
+        let row: Vec<&str> = line.split('\t').collect();
+        assert!(["moves", "refit", "install", "rebuild"].contains(&row[0]), "{line}");
+        let count: f64 = row[1].parse().unwrap();
+        frames += count;
+        pairs += count * row[column("pairs")].parse::<f64>().unwrap();
+        let visits: f64 = row[column("node_pairs")].parse().unwrap();
+        assert!(visits > 0.0, "{line}");
+    }
+    assert_eq!(frames, (trace.frames() - 1) as f64);
+    assert!((pairs - brute as f64).abs() < 0.5 * frames, "{pairs} pairs, brute force {brute}");
+}
+
 #[test]
 fn bench_pairs_dumps_the_trace_it_ran() {
     let path = std::env::temp_dir().join(format!("bvol-dump-{}.bphf", std::process::id()));

@@ -77,5 +77,6 @@ pub use config::Config;
 pub use error::{TreeError, Violation};
 pub use node::Slot;
 pub use pair_set::PairSet;
+pub use pairs::SearchStats;
 pub use tree::{Move, Tree};
 pub use update::UpdateStats;

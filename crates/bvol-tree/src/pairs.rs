@@ -78,6 +78,19 @@ struct Search<'t, B: Bound> {
     b: &'t [Node<B>],
 }
 
+/// What one pair search ([`Tree::pairs_into`]) did: the work it took and
+/// what it found, for telling where a search's time goes.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SearchStats {
+    /// Node pairs visited: an internal node against itself (its two
+    /// children tested against each other), or two internal nodes (their
+    /// selected children tested against each other, up to four tests). The
+    /// same count on any number of threads.
+    pub node_pairs: u64,
+    /// Pairs of overlapping leaves found.
+    pub pairs: u64,
+}
+
 impl<B: Bound> Tree<B> {
     /// Every pair of leaves whose tight bounds overlap or touch, each once as
     /// `(a, b)` with `a < b`. The order is fixed by the tree: the same on any
@@ -88,22 +101,41 @@ impl<B: Bound> Tree<B> {
         out
     }
 
-    /// [`Tree::pairs`] into `out` (cleared first), reusing its allocation.
-    pub fn pairs_into(&self, out: &mut Vec<(u32, u32)>) {
+    /// [`Tree::pairs`] into `out` (cleared first), reusing its allocation,
+    /// and what the search took.
+    ///
+    /// ```
+    /// use bvol_tree::Tree;
+    /// use bvol_volumes::Aabb;
+    /// use glam::Vec3;
+    /// let at = |x: f32| Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0));
+    /// let tree = Tree::from_bounds(&[at(0.0), at(0.5), at(3.0), at(3.5)])?;
+    /// let mut pairs = Vec::new();
+    /// let stats = tree.pairs_into(&mut pairs);
+    /// pairs.sort_unstable(); // they come in the tree's order
+    /// assert_eq!(pairs, vec![(0, 1), (2, 3)]);
+    /// assert_eq!(stats.pairs, 2);
+    /// // The root's two subtrees, then each subtree's two leaves.
+    /// assert_eq!(stats.node_pairs, 3);
+    /// # Ok::<(), bvol_tree::TreeError>(())
+    /// ```
+    pub fn pairs_into(&self, out: &mut Vec<(u32, u32)>) -> SearchStats {
         let search = Search { a: &self.nodes, b: &self.nodes };
         // Last chunk first: in preorder a node's subtree follows it, so going
         // backwards a node's two subtrees were searched just before it, and
         // the search between them finds their nodes still in cache.
         let chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).rev().collect();
         let range = |start: usize| start..(start + CHUNK).min(self.nodes.len());
+        let node_pairs;
         if one_thread() {
             let mut pairs = Buf { items: std::mem::take(out), len: 0 };
-            with_walker(|walker| {
+            node_pairs = with_walker(|walker| {
                 std::mem::swap(&mut walker.out, &mut pairs);
                 for &start in &chunks {
                     walker.siblings(&search, range(start));
                 }
                 std::mem::swap(&mut walker.out, &mut pairs);
+                std::mem::take(&mut walker.visits)
             });
             // Its length stays the pairs': the next search overwrites them
             // in place (the walker's buffer holds its length as room already
@@ -115,7 +147,7 @@ impl<B: Bound> Tree<B> {
             }
         } else {
             out.clear();
-            let parts: Vec<Vec<(u32, u32)>> = chunks
+            let (parts, visits): (Vec<Vec<(u32, u32)>>, Vec<u64>) = chunks
                 .par_iter()
                 .map(|&start| {
                     with_walker(|walker| {
@@ -123,9 +155,11 @@ impl<B: Bound> Tree<B> {
                         walker.take()
                     })
                 })
-                .collect();
+                .unzip();
+            node_pairs = visits.iter().sum();
             concat(parts, out, ordered);
         }
+        SearchStats { node_pairs, pairs: out.len() as u64 }
     }
 
     /// Every pair `(id in self, id in other)` of leaves whose tight bounds
@@ -157,14 +191,14 @@ impl<B: Bound> Tree<B> {
         let first = Visit { x: self.root.index() | BOTH, y: other.root.index() | BOTH };
         let (visits, head) = with_walker(|walker| {
             let visits = walker.expand(&search, first, TASKS);
-            (visits, walker.take())
+            (visits, walker.take().0)
         });
         let parts: Vec<Vec<(u32, u32)>> = visits
             .par_chunks(TASKS / 64)
             .map(|visits| {
                 with_walker(|walker| {
                     walker.run(&search, visits);
-                    walker.take()
+                    walker.take().0
                 })
             })
             .collect();
@@ -298,6 +332,8 @@ struct Walker {
     /// The visits of the next level.
     next: Buf<Visit>,
     out: Buf<(u32, u32)>,
+    /// Node pairs visited since the last [`Walker::take`].
+    visits: u64,
 }
 
 impl Walker {
@@ -339,7 +375,8 @@ impl Walker {
                     })
                 };
                 let (a, b) = rayon::join(|| half(left), || half(right));
-                for pairs in [a, b] {
+                for (pairs, visits) in [a, b] {
+                    self.visits += visits;
                     self.out.reserve(pairs.len());
                     self.out.items[self.out.len..self.out.len + pairs.len()]
                         .copy_from_slice(&pairs);
@@ -356,6 +393,7 @@ impl Walker {
     /// Visits the current level, filling the next.
     fn level<B: Bound>(&mut self, s: &Search<B>) {
         let n = self.now.len;
+        self.visits += n as u64;
         self.next.len = 0;
         self.next.reserve(4 * n);
         self.out.reserve(4 * n);
@@ -436,6 +474,7 @@ impl Walker {
         // Each node's outcome is filed through windows of four.
         self.next.reserve(nodes.len() + 4);
         self.out.reserve(nodes.len() + 4);
+        self.visits += nodes.len() as u64;
         for x in nodes.rev() {
             // The next chunk's nodes, met in the same order: read while this
             // chunk's descent works in the cache, they are there when its
@@ -456,10 +495,11 @@ impl Walker {
         self.descend(s);
     }
 
-    /// The pairs found so far, leaving the output empty.
-    fn take(&mut self) -> Vec<(u32, u32)> {
+    /// The pairs found and the node pairs visited so far, leaving both
+    /// empty.
+    fn take(&mut self) -> (Vec<(u32, u32)>, u64) {
         let pairs = self.out.items[..self.out.len].to_vec();
         self.out.len = 0;
-        pairs
+        (pairs, std::mem::take(&mut self.visits))
     }
 }

@@ -11,6 +11,8 @@ use bvol::volumes::Aabb;
 use bvol_cli::digest::PairDigest;
 use bvol_cli::scenes::{Scene, SceneKind};
 use bvol_cli::trace::{BoxTrace, TraceWriter};
+
+use super::breakdown::Breakdown;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
 
@@ -43,6 +45,13 @@ pub struct PairsArgs {
     /// Keep a persistent pair set and time its began / ended events too.
     #[arg(long)]
     events: bool,
+    /// Also print to standard error, for each kind of frame (what the
+    /// tree's update did: moved leaves one by one, refit, install a staged
+    /// rebuild, rebuild in one go), how many there were and their means:
+    /// leaves moved, update and pair-search time, node pairs visited and
+    /// pairs found.
+    #[arg(long)]
+    verbose: bool,
 }
 
 /// A source of frames.
@@ -105,6 +114,8 @@ struct Run {
     /// Began and ended events over all frames (with `--events`).
     began: u64,
     ended: u64,
+    /// Frames 1.. by kind.
+    breakdown: Breakdown,
 }
 
 pub fn run(args: PairsArgs) -> Result<(), String> {
@@ -147,6 +158,9 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         args.load.as_ref().map_or(args.scene.name(), |_| "trace"),
         args.events,
     );
+    if args.verbose {
+        eprint!("{}", run.breakdown.table(!args.events));
+    }
     Ok(())
 }
 
@@ -176,6 +190,7 @@ fn measure(
         bytes: 0,
         began: 0,
         ended: 0,
+        breakdown: Breakdown::default(),
     };
     for f in 0..count {
         let boxes = frames.frame(f);
@@ -183,17 +198,19 @@ fn measure(
             dump.write_frame(boxes)?;
         }
         let started = Instant::now();
+        let mut update = None;
         if f == 0 {
             tree = Tree::from_bounds(boxes).map_err(|e| format!("frame 0: {e}"))?;
         } else {
-            tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?;
-            run.update_ms += started.elapsed().as_secs_f64() * 1e3;
+            update = Some(tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?);
         }
-        if events {
+        let update_ms = started.elapsed().as_secs_f64() * 1e3;
+        let search = if events {
             set.update(&mut tree);
+            None
         } else {
-            tree.pairs_into(&mut pairs);
-        }
+            Some(tree.pairs_into(&mut pairs))
+        };
         let ms = started.elapsed().as_secs_f64() * 1e3;
         if events {
             pairs.clear();
@@ -201,10 +218,13 @@ fn measure(
             run.began += set.began().len() as u64;
             run.ended += set.ended().len() as u64;
         }
-        if f == 0 {
-            run.build_ms = ms;
-        } else {
+        if let Some(update) = update {
+            run.update_ms += update_ms;
             run.frame_ms.push(ms);
+            let found = if events { set.pairs().len() } else { pairs.len() };
+            run.breakdown.add(&update, update_ms, ms - update_ms, search, found);
+        } else {
+            run.build_ms = ms;
         }
         run.pairs += pairs.len() as u64;
         run.digest += PairDigest::of_pairs(pairs.iter().copied());

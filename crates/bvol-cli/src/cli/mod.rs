@@ -2,6 +2,7 @@
 
 mod bench;
 mod bench_world;
+mod breakdown;
 mod fit;
 
 use std::path::PathBuf;
