@@ -6,6 +6,7 @@
 
 use std::time::Instant;
 
+use bvol_tree::sort_pairs;
 use bvol_volumes::{Aabb, BodyBounds, WorldBounds, prefetch};
 use rayon::prelude::*;
 
@@ -84,7 +85,7 @@ impl<B: Broadphase> World<B> {
         stats.obbs_time = t4 - t3;
         // Sorted for the narrow phase's merge with last frame's states here,
         // where the fewest pairs are left.
-        sort_by_slot(nearer, bodies.shapes.len(), starts, sorted);
+        sort_pairs(nearer, bodies.shapes.len(), starts, sorted);
         // Last frame's events stay where they are until the kept pairs'
         // contacts are read from them.
         let mut events = std::mem::take(spare);
@@ -236,58 +237,10 @@ impl<B: Broadphase> World<B> {
     }
 }
 
-/// The pairs `(a, b)`, `a < b < slots`, sorted: a counting sort on `a` (slots
-/// are dense: one pass counts, one places; Knuth, TAOCP vol. 3, 5.2), then
-/// each slot's few pairs by `b`: a fraction of a comparison sort's time.
-/// `starts` is scratch; the result goes in `sorted`.
-fn sort_by_slot(
-    pairs: &[(u32, u32)],
-    slots: usize,
-    starts: &mut Vec<u32>,
-    sorted: &mut Vec<(u32, u32)>,
-) {
-    starts.clear();
-    starts.resize(slots + 1, 0);
-    for &(a, _) in pairs {
-        starts[a as usize + 1] += 1;
-    }
-    for i in 1..starts.len() {
-        starts[i] += starts[i - 1];
-    }
-    sorted.clear();
-    sorted.resize(pairs.len(), (0, 0));
-    for &(a, b) in pairs {
-        let at = &mut starts[a as usize];
-        sorted[*at as usize] = (a, b);
-        *at += 1;
-    }
-    // Each slot's place now ends its run. Most runs hold a pair or two: an
-    // insertion sort in line costs less than a library sort called for each.
-    let mut begin = 0;
-    for &end in &starts[..slots] {
-        let run = &mut sorted[begin as usize..end as usize];
-        if run.len() > SHORT_RUN {
-            run.sort_unstable();
-        } else {
-            for i in 1..run.len() {
-                let mut j = i;
-                while j > 0 && run[j - 1].1 > run[j].1 {
-                    run.swap(j - 1, j);
-                    j -= 1;
-                }
-            }
-        }
-        begin = end;
-    }
-}
-
 /// The moving broadphase reads every leaf's box from the slot array when at
 /// least one body in this many of those it holds moved (see
 /// `update_broadphases`).
 const DENSE_SHARE: usize = 2;
-
-/// Runs of [`sort_by_slot`] longer than this take the library's sort.
-const SHORT_RUN: usize = 16;
 
 /// The pairs for which `keep` holds, in order, tested in parallel chunks.
 /// The pairs come in the broadphases' order, their bodies scattered in the
@@ -311,37 +264,4 @@ fn filter(
         });
         kept.map(|(_, &pair)| pair)
     }));
-}
-
-#[cfg(test)]
-mod tests {
-    use proptest::prelude::*;
-
-    use super::sort_by_slot;
-
-    proptest! {
-        /// The counting sort gives the order of a comparison sort, on pairs
-        /// `a < b` of slots below the count, repeats of a first slot included:
-        /// with few slots, runs far longer than `SHORT_RUN`.
-        #[test]
-        fn sort_by_slot_matches_a_comparison_sort(
-            slots in 2u32..300,
-            raw in prop::collection::vec((0u32..300, 0u32..300), 0..2000),
-        ) {
-            // Each pair once, in the generated (arbitrary) order.
-            let mut seen = std::collections::HashSet::new();
-            let pairs: Vec<(u32, u32)> = raw
-                .into_iter()
-                .map(|(a, b)| (a % slots, b % slots))
-                .filter(|(a, b)| a != b)
-                .map(|(a, b)| (a.min(b), a.max(b)))
-                .filter(|&pair| seen.insert(pair))
-                .collect();
-            let mut want = pairs.clone();
-            want.sort_unstable();
-            let (mut starts, mut sorted) = (vec![7; 3], vec![(1, 2); 5]);
-            sort_by_slot(&pairs, slots as usize, &mut starts, &mut sorted);
-            prop_assert_eq!(sorted, want);
-        }
-    }
 }

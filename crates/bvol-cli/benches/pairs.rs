@@ -1,5 +1,6 @@
 //! The broadphase side by side: update + all pairs per frame on the generated
-//! scenes, for bvol's tree, a sweep-and-prune baseline, parry3d's `Bvh` (used as
+//! scenes, for bvol's tree (its pairs kept in a `PairCache`, copied out each
+//! frame; and, as `bvol-search`, searched afresh), a sweep-and-prune baseline, parry3d's `Bvh` (used as
 //! its authors advise: binned build, then per frame insert_or_update_partially,
 //! optimize_incremental, refit and traverse_bvtt_single_tree) and, for small N,
 //! brute force. Every method's pairs are checked equal before timing.
@@ -9,7 +10,7 @@
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use bvol::tree::Tree;
+use bvol::tree::{PairCache, Tree};
 use bvol::volumes::Aabb;
 use bvol_cli::digest::PairDigest;
 use bvol_cli::scenes::{Scene, SceneKind};
@@ -24,22 +25,24 @@ trait Broadphase {
 }
 
 /// bvol's dynamic tree, on one thread like the others (its builds and pair
-/// search would otherwise use rayon's global pool).
+/// search would otherwise use rayon's global pool), its pairs kept in a
+/// `PairCache` (`cache`) or searched afresh each frame.
 struct BvolTree {
     tree: Option<Tree<Aabb>>,
+    cache: Option<PairCache>,
     one_thread: rayon::ThreadPool,
 }
 
-impl Default for BvolTree {
-    fn default() -> Self {
+impl BvolTree {
+    fn new(cache: bool) -> Self {
         let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        BvolTree { tree: None, one_thread }
+        BvolTree { tree: None, cache: cache.then(PairCache::new), one_thread }
     }
 }
 
 impl Broadphase for BvolTree {
     fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        let slot = &mut self.tree;
+        let (slot, cache) = (&mut self.tree, &mut self.cache);
         self.one_thread.install(|| {
             let tree = match slot {
                 Some(tree) => {
@@ -48,7 +51,16 @@ impl Broadphase for BvolTree {
                 }
                 None => slot.insert(Tree::from_bounds(boxes).expect("valid boxes")),
             };
-            tree.pairs_into(pairs);
+            match cache {
+                Some(cache) => {
+                    cache.update(tree);
+                    pairs.clear();
+                    pairs.extend_from_slice(cache.pairs());
+                }
+                None => {
+                    tree.pairs_into(pairs);
+                }
+            }
         });
     }
 }
@@ -137,7 +149,8 @@ type Method = (&'static str, fn() -> Box<dyn Broadphase>);
 
 fn methods(n: usize) -> Vec<Method> {
     let mut out: Vec<Method> = vec![
-        ("bvol", || Box::new(BvolTree::default())),
+        ("bvol", || Box::new(BvolTree::new(true))),
+        ("bvol-search", || Box::new(BvolTree::new(false))),
         ("sweep-and-prune", || Box::new(SweepAndPrune::default())),
         ("parry3d", || Box::new(Parry::default())),
     ];

@@ -62,9 +62,12 @@ fn bench_pairs_reads_a_trace_and_prints_its_digest() {
         d += brute_digest(trace.frame(f));
         d
     });
-    for threads in ["1", "2"] {
+    // Pairs kept in a cache (the default), searched afresh, kept in a set.
+    let finders = [None, Some("--search"), Some("--events")];
+    for (threads, finder) in ["1", "2"].into_iter().flat_map(|t| finders.map(|f| (t, f))) {
         let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
             .args(["bench", "pairs", "--load", path.to_str().unwrap(), "--threads", threads])
+            .args(finder)
             .output()
             .unwrap();
         assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
@@ -109,38 +112,52 @@ fn bench_pairs_reads_a_trace_and_prints_its_digest() {
 
 /// `--verbose` prints, apart from the one line of figures, a row per kind
 /// of frame whose counts add up to every frame after the first and to the
-/// pairs brute force finds in them.
+/// pairs brute force finds in them; on a flat layer with 1% sliding, the
+/// pair cache queries around the sliding boxes instead of searching.
 #[test]
 fn bench_pairs_verbose_accounts_for_every_frame() {
-    let trace = record(SceneKind::Teleport, 3_000, 12);
+    let trace = record(SceneKind::Flat, 3_000, 12);
     let path = std::env::temp_dir().join(format!("bvol-verbose-{}.bphf", std::process::id()));
     trace.write(&path).unwrap();
     let brute: usize =
         (1..trace.frames()).map(|f| brute_digest(trace.frame(f)).count as usize).sum();
-    let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
-        .args(["bench", "pairs", "--load", path.to_str().unwrap(), "--verbose"])
-        .output()
-        .unwrap();
-    std::fs::remove_file(&path).unwrap();
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 2);
-    let table = String::from_utf8(out.stderr).unwrap();
-    let mut lines = table.lines();
-    let header: Vec<&str> = lines.next().unwrap().split('\t').collect();
-    assert_eq!(header[..2], ["frame_kind", "frames"]);
-    let column = |name: &str| header.iter().position(|h| *h == name).unwrap();
-    let (mut frames, mut pairs) = (0.0, 0.0);
-    for line in lines {
-        let row: Vec<&str> = line.split('\t').collect();
-        assert!(["moves", "refit", "install", "rebuild"].contains(&row[0]), "{line}");
-        let count: f64 = row[1].parse().unwrap();
-        frames += count;
-        pairs += count * row[column("pairs")].parse::<f64>().unwrap();
-        let visits: f64 = row[column("node_pairs")].parse().unwrap();
-        assert!(visits > 0.0, "{line}");
+    let rows = |flags: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_bvol"))
+            .args(["bench", "pairs", "--load", path.to_str().unwrap(), "--verbose"])
+            .args(flags)
+            .output()
+            .unwrap();
+        assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
+        assert_eq!(String::from_utf8(out.stdout).unwrap().lines().count(), 2);
+        let table = String::from_utf8(out.stderr).unwrap();
+        let mut lines = table.lines();
+        let header: Vec<String> = lines.next().unwrap().split('\t').map(String::from).collect();
+        assert_eq!(header[..2], ["frame_kind", "frames"]);
+        let rows: Vec<Vec<String>> =
+            lines.map(|l| l.split('\t').map(String::from).collect()).collect();
+        (header, rows)
+    };
+    for flags in [&[][..], &["--search"]] {
+        let (header, rows) = rows(flags);
+        let column = |name: &str| header.iter().position(|h| h == name).unwrap();
+        let value = |row: &[String], name: &str| row[column(name)].parse::<f64>().unwrap();
+        let (mut frames, mut pairs, mut queried) = (0.0, 0.0, 0.0);
+        for row in &rows {
+            assert!(["moves", "refit", "install", "rebuild"].contains(&row[0].as_str()), "{row:?}");
+            let count = value(row, "frames");
+            frames += count;
+            pairs += count * value(row, "pairs");
+            queried += count * value(row, "queried");
+            if flags == ["--search"] {
+                assert_eq!(value(row, "searched"), count, "{row:?}");
+                assert!(value(row, "node_pairs") > 0.0, "{row:?}");
+            }
+        }
+        assert_eq!(frames, (trace.frames() - 1) as f64);
+        assert!((pairs - brute as f64).abs() < 0.5 * frames, "{pairs} pairs, brute force {brute}");
+        assert_eq!(queried > 0.0, flags.is_empty(), "{flags:?}: {queried} leaves queried");
     }
-    assert_eq!(frames, (trace.frames() - 1) as f64);
-    assert!((pairs - brute as f64).abs() < 0.5 * frames, "{pairs} pairs, brute force {brute}");
+    std::fs::remove_file(&path).unwrap();
 }
 
 #[test]

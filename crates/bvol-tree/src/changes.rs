@@ -1,6 +1,12 @@
 //! The change log: which ids were inserted, moved or removed since the last
 //! time a [`PairSet`](crate::PairSet) caught up, so it retests only those.
 
+/// Above this fraction of changed leaves, a pair list is recomputed by one
+/// tree self-search instead of querying each changed leaf: the queries'
+/// cost grows with the leaves changed, and reaches the full search's a
+/// little above this fraction (chosen by measurement on `benches/frame.rs`).
+const FULL_FRACTION: f32 = 0.15;
+
 /// Ids changed since the log was last cleared: a list for iterating and a
 /// bit per id for membership, or "all of them" after a whole-tree update.
 #[derive(Clone, Debug, Default)]
@@ -44,9 +50,10 @@ impl Changes {
         self.all || self.bits.get(id as usize / 64).is_some_and(|w| w & (1 << (id % 64)) != 0)
     }
 
-    /// Whether everything is marked.
-    pub(crate) fn all(&self) -> bool {
-        self.all
+    /// Whether few enough of `len` leaves changed that querying each costs
+    /// less than searching all pairs again.
+    pub(crate) fn few(&self, len: usize) -> bool {
+        !self.all && self.ids.len() as f32 <= FULL_FRACTION * len as f32
     }
 
     /// The ids marked one by one (empty when [`Changes::all`]).

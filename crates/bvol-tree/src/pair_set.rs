@@ -1,18 +1,7 @@
 //! The persistent pair set: a tree's overlapping pairs kept across frames,
 //! with the pairs that began and ended at each update.
 
-use rayon::prelude::*;
-
-use crate::{Bound, Tree};
-
-/// Changed ids per task of the incremental path.
-const CHUNK: usize = 256;
-/// Above this fraction of changed leaves, an update recomputes every pair
-/// (one tree self-search) instead of querying each changed leaf: the
-/// queries' cost grows with the leaves changed, and reaches the full
-/// search's a little above this fraction (chosen by measurement on
-/// `benches/frame.rs`).
-const FULL_FRACTION: f32 = 0.15;
+use crate::{Bound, Tree, sort_pairs};
 
 /// The overlapping pairs of one [`Tree`], kept up to date frame to frame,
 /// with the pairs that began and ended at the last update. All three lists
@@ -51,7 +40,7 @@ pub struct PairSet {
     /// and merging.
     fresh: Vec<(u32, u32)>,
     sorted: Vec<(u32, u32)>,
-    starts: Vec<usize>,
+    starts: Vec<u32>,
 }
 
 impl PairSet {
@@ -79,14 +68,14 @@ impl PairSet {
     /// log. Deterministic: the same lists whatever the thread count.
     pub fn update<B: Bound>(&mut self, tree: &mut Tree<B>) {
         let changes = &tree.changes;
-        let full = changes.all() || changes.ids().len() as f32 > FULL_FRACTION * tree.len() as f32;
-        if full {
+        if !changes.few(tree.len()) {
             tree.pairs_into(&mut self.fresh);
-            self.sort_fresh();
+            self.sort_fresh(tree.leaf_parents.len());
             diff(&self.pairs, &self.fresh, &mut self.ended, &mut self.began);
             std::mem::swap(&mut self.pairs, &mut self.fresh);
         } else {
-            self.changed_pairs(tree);
+            tree.changed_pairs(&mut self.fresh);
+            self.sort_fresh(tree.leaf_parents.len());
             // The old pairs touching a changed leaf are the candidates to end
             // (moved aside, in order); the others are kept as they are.
             self.sorted.clear();
@@ -105,59 +94,10 @@ impl PairSet {
         tree.changes.clear();
     }
 
-    /// Fills `fresh`, sorted, with the pairs that touch a changed leaf: each
-    /// changed leaf queries the tree, and a pair of two changed leaves is kept
-    /// from the query of the smaller id only.
-    fn changed_pairs<B: Bound>(&mut self, tree: &Tree<B>) {
-        let changes = &tree.changes;
-        let parts: Vec<Vec<(u32, u32)>> = changes
-            .ids()
-            .par_chunks(CHUNK)
-            .map(|ids| {
-                let mut found = Vec::new();
-                for &id in ids {
-                    let Some(bound) = tree.bound(id) else { continue };
-                    tree.query(&bound, |other| {
-                        if other != id && (!changes.is_marked(other) || id < other) {
-                            found.push((id.min(other), id.max(other)));
-                        }
-                    });
-                }
-                found
-            })
-            .collect();
-        self.fresh.clear();
-        for part in parts {
-            self.fresh.extend_from_slice(&part);
-        }
-        self.sort_fresh();
-    }
-
-    /// Sorts `fresh` by `(a, b)`: two stable counting sorts, on `b` then on
-    /// `a` (an LSD radix sort with one digit per id). O(pairs + largest id),
-    /// against O(p log p) for a comparison sort; the buffers are kept, so a
-    /// frame allocates nothing.
-    fn sort_fresh(&mut self) {
-        let Some(top) = self.fresh.iter().map(|p| p.1).max() else { return };
-        for key in [|p: &(u32, u32)| p.1, |p: &(u32, u32)| p.0] {
-            let starts = &mut self.starts;
-            starts.clear();
-            starts.resize(top as usize + 2, 0);
-            for p in &self.fresh {
-                starts[key(p) as usize + 1] += 1;
-            }
-            for i in 1..starts.len() {
-                starts[i] += starts[i - 1];
-            }
-            self.sorted.clear();
-            self.sorted.resize(self.fresh.len(), (0, 0));
-            for p in &self.fresh {
-                let slot = &mut starts[key(p) as usize];
-                self.sorted[*slot] = *p;
-                *slot += 1;
-            }
-            std::mem::swap(&mut self.fresh, &mut self.sorted);
-        }
+    /// Sorts `fresh`, whose ids are below `ids`, by `(a, b)`.
+    fn sort_fresh(&mut self, ids: usize) {
+        sort_pairs(&self.fresh, ids, &mut self.starts, &mut self.sorted);
+        std::mem::swap(&mut self.fresh, &mut self.sorted);
     }
 }
 

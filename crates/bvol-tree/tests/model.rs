@@ -3,7 +3,7 @@
 
 mod common;
 
-use bvol_tree::{Config, Move, PairSet, Tree, TreeError};
+use bvol_tree::{Config, Move, PairCache, PairSet, Tree, TreeError};
 use bvol_volumes::{Aabb, Ray, Sphere};
 use common::{Mix, TestBound, any_bound, brute_cross, brute_pairs, brute_ray};
 use glam::Vec3;
@@ -114,6 +114,7 @@ struct Check<B: TestBound> {
     tree: Tree<B>,
     model: Vec<Option<B>>,
     set: PairSet,
+    cache: PairCache,
     last: Vec<(u32, u32)>,
 }
 
@@ -123,6 +124,7 @@ impl<B: TestBound> Check<B> {
             tree: Tree::with_config(config),
             model: vec![None; IDS as usize],
             set: PairSet::new(),
+            cache: PairCache::new(),
             last: Vec::new(),
         }
     }
@@ -368,10 +370,17 @@ impl<B: TestBound> Check<B> {
         Ok(())
     }
 
-    /// The pair set against the brute-force pairs now, and its events against
-    /// the difference from the pairs at the previous sync.
+    /// The pair set and the pair cache against the brute-force pairs now,
+    /// and the set's events against the difference from the pairs at the
+    /// previous sync. The cache reads a copy of the tree, whose change log
+    /// is the same as the set's.
     fn sync(&mut self) -> Result<(), TestCaseError> {
         let want = brute_pairs(&self.leaves());
+        let mut copy = self.tree.clone();
+        self.cache.update(&mut copy);
+        let mut cached = self.cache.pairs().to_vec();
+        cached.sort_unstable();
+        prop_assert_eq!(&cached, &want);
         self.set.update(&mut self.tree);
         prop_assert_eq!(self.set.pairs(), &want[..]);
         let began: Vec<_> =

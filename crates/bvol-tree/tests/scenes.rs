@@ -4,7 +4,7 @@
 
 mod common;
 
-use bvol_tree::{Config, PairSet, Tree};
+use bvol_tree::{Config, PairCache, PairSet, Tree};
 use bvol_volumes::{Aabb, Sphere};
 use common::{Mix, TestBound, brute_cross, brute_pairs, on_threads};
 use glam::Vec3;
@@ -71,6 +71,9 @@ fn against_brute_force<B: TestBound>(n: usize, frames: usize, config: Config) {
 fn run_scene<B: TestBound>(mut scene: Scene<B>, frames: usize, config: Config) {
     let mut tree = Tree::with_config(config);
     let mut set = PairSet::new();
+    let mut cache = PairCache::new();
+    // Whether some frame's cache kept pairs and searched around the changes.
+    let mut light = false;
     let mut last: Vec<(u32, u32)> = Vec::new();
     for f in 0..frames {
         // Heavy frames take the refit path, light ones the per-leaf path.
@@ -82,6 +85,12 @@ fn run_scene<B: TestBound>(mut scene: Scene<B>, frames: usize, config: Config) {
         let mut got = tree.pairs();
         got.sort_unstable();
         assert_eq!(got, want, "frame {f}");
+        // The cache reads a copy of the tree, whose change log is the set's.
+        let update = cache.update(&mut tree.clone());
+        let mut cached = cache.pairs().to_vec();
+        cached.sort_unstable();
+        assert_eq!(cached, want, "frame {f}");
+        light |= update.search.is_none();
         set.update(&mut tree);
         assert_eq!(set.pairs(), &want[..], "frame {f}");
         let began: Vec<_> =
@@ -92,6 +101,8 @@ fn run_scene<B: TestBound>(mut scene: Scene<B>, frames: usize, config: Config) {
         assert_eq!(set.ended(), &ended[..], "frame {f}");
         last = want;
     }
+    // From the third frame on, some frames move few leaves.
+    assert!(light || frames < 3, "no frame searched only around its changes");
 }
 
 #[test]
@@ -161,11 +172,13 @@ fn results_do_not_depend_on_the_thread_count() {
             let stat = Tree::from_bounds(&Scene::<Aabb>::new(3000, 12).bounds).unwrap();
             let mut tree = Tree::new();
             let mut set = PairSet::new();
+            let mut cache = PairCache::new();
             let mut seen = Vec::new();
             for f in 0..6 {
                 let (moving, jumping) = [(100, 1), (2, 0)][f % 2];
                 scene.step(moving, jumping);
                 tree.update(&scene.bounds).unwrap();
+                cache.update(&mut tree.clone());
                 set.update(&mut tree);
                 let mut pairs = Vec::new();
                 let stats = tree.pairs_into(&mut pairs);
@@ -176,6 +189,7 @@ fn results_do_not_depend_on_the_thread_count() {
                     tree.pairs_with(&stat),
                     set.pairs().to_vec(),
                     set.began().to_vec(),
+                    cache.pairs().to_vec(),
                 ));
             }
             seen

@@ -6,7 +6,7 @@ use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-use bvol::tree::{PairSet, Tree};
+use bvol::tree::{CacheUpdate, PairCache, PairSet, Tree};
 use bvol::volumes::Aabb;
 use bvol_cli::digest::PairDigest;
 use bvol_cli::scenes::{Scene, SceneKind};
@@ -43,13 +43,19 @@ pub struct PairsArgs {
     #[arg(long, conflicts_with = "load")]
     dump: Option<PathBuf>,
     /// Keep a persistent pair set and time its began / ended events too.
-    #[arg(long)]
+    #[arg(long, conflicts_with = "search")]
     events: bool,
+    /// Search every pair afresh each frame (`Tree::pairs_into`), instead of
+    /// keeping them in a `PairCache` that searches only around the leaves
+    /// that moved when few did.
+    #[arg(long)]
+    search: bool,
     /// Also print to standard error, for each kind of frame (what the
     /// tree's update did: moved leaves one by one, refit, install a staged
     /// rebuild, rebuild in one go), how many there were and their means:
-    /// leaves moved, update and pair-search time, node pairs visited and
-    /// pairs found.
+    /// leaves moved, update time, time to bring the pairs up to date, how
+    /// many frames searched every pair and the node pairs they visited, the
+    /// changed leaves queried instead, and pairs found.
     #[arg(long)]
     verbose: bool,
 }
@@ -148,7 +154,12 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         .num_threads(args.threads)
         .build()
         .map_err(|e| e.to_string())?;
-    let run = pool.install(|| measure(frames, n, count, args.events, &mut dump))?;
+    let finder = match (args.events, args.search) {
+        (true, _) => Finder::Set(PairSet::new()),
+        (false, true) => Finder::Search(Vec::new()),
+        (false, false) => Finder::Cache(PairCache::new()),
+    };
+    let run = pool.install(|| measure(frames, n, count, finder, &mut dump))?;
     if let Some(dump) = dump {
         dump.finish()?;
     }
@@ -159,24 +170,58 @@ pub fn run(args: PairsArgs) -> Result<(), String> {
         args.events,
     );
     if args.verbose {
-        eprint!("{}", run.breakdown.table(!args.events));
+        eprint!("{}", run.breakdown.table());
     }
     Ok(())
+}
+
+/// How a frame's pairs are found once the tree is up to date.
+enum Finder {
+    /// Every pair searched afresh (`--search`).
+    Search(Vec<(u32, u32)>),
+    /// Kept from frame to frame, searched around what moved (the default).
+    Cache(PairCache),
+    /// Kept sorted with began and ended pairs (`--events`).
+    Set(PairSet),
+}
+
+impl Finder {
+    /// Brings the pairs up to date with `tree`: what was done, but for a
+    /// pair set, which does not say.
+    fn update(&mut self, tree: &mut Tree<Aabb>) -> Option<CacheUpdate> {
+        match self {
+            Finder::Search(pairs) => {
+                let search = Some(tree.pairs_into(pairs));
+                Some(CacheUpdate { search, kept: 0, queried: 0 })
+            }
+            Finder::Cache(cache) => Some(cache.update(tree)),
+            Finder::Set(set) => {
+                set.update(tree);
+                None
+            }
+        }
+    }
+
+    fn pairs(&self) -> &[(u32, u32)] {
+        match self {
+            Finder::Search(pairs) => pairs,
+            Finder::Cache(cache) => cache.pairs(),
+            Finder::Set(set) => set.pairs(),
+        }
+    }
 }
 
 fn measure(
     mut frames: Frames,
     n: usize,
     count: usize,
-    events: bool,
+    mut finder: Finder,
     dump: &mut Option<Dump>,
 ) -> Result<Run, String> {
     let progress = ProgressBar::new(count as u64).with_style(
         ProgressStyle::with_template("{bar:40} {pos}/{len} frames, {eta} left").expect("template"),
     );
     let mut tree = Tree::<Aabb>::new();
-    let mut pairs = Vec::new();
-    let mut set = PairSet::new();
     let mut run = Run {
         n,
         frames: count,
@@ -205,24 +250,17 @@ fn measure(
             update = Some(tree.update(boxes).map_err(|e| format!("frame {f}: {e}"))?);
         }
         let update_ms = started.elapsed().as_secs_f64() * 1e3;
-        let search = if events {
-            set.update(&mut tree);
-            None
-        } else {
-            Some(tree.pairs_into(&mut pairs))
-        };
+        let found = finder.update(&mut tree);
         let ms = started.elapsed().as_secs_f64() * 1e3;
-        if events {
-            pairs.clear();
-            pairs.extend_from_slice(set.pairs());
+        if let Finder::Set(set) = &finder {
             run.began += set.began().len() as u64;
             run.ended += set.ended().len() as u64;
         }
+        let pairs = finder.pairs();
         if let Some(update) = update {
             run.update_ms += update_ms;
             run.frame_ms.push(ms);
-            let found = if events { set.pairs().len() } else { pairs.len() };
-            run.breakdown.add(&update, update_ms, ms - update_ms, search, found);
+            run.breakdown.add(&update, (update_ms, ms - update_ms), found, pairs.len());
         } else {
             run.build_ms = ms;
         }

@@ -2,7 +2,7 @@
 //! update did, and where each group's time went, so that a regression shows
 //! in the stage and the kind of frame where it is.
 
-use bvol::tree::{SearchStats, UpdateStats};
+use bvol::tree::{CacheUpdate, UpdateStats};
 
 /// What a frame's update did, from its [`UpdateStats`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -47,9 +47,15 @@ struct Totals {
     frames: u64,
     moved: u64,
     update_ms: f64,
-    search_ms: f64,
+    pairs_ms: f64,
+    /// Frames whose pairs were all searched afresh, and their node pairs.
+    searched: u64,
     node_pairs: u64,
+    /// Changed leaves that queried the tree instead.
+    queried: u64,
     pairs: u64,
+    /// Frames whose pair finder said what it did (not a pair set's).
+    told: u64,
 }
 
 /// The frames after the first, summed by kind.
@@ -59,15 +65,15 @@ pub struct Breakdown {
 }
 
 impl Breakdown {
-    /// Adds one frame: what its update did and took, and what its pair
-    /// search took (`search` is `None` where the pairs came from a
-    /// [`bvol::tree::PairSet`], which does not count its work).
+    /// Adds one frame: what its update did, the time `(update, pairs)` in
+    /// milliseconds that the update and bringing the pairs up to date took,
+    /// what the latter did (`None` for a [`bvol::tree::PairSet`], which does
+    /// not say), and the pairs found.
     pub fn add(
         &mut self,
         update: &UpdateStats,
-        update_ms: f64,
-        search_ms: f64,
-        search: Option<SearchStats>,
+        (update_ms, pairs_ms): (f64, f64),
+        found: Option<CacheUpdate>,
         pairs: usize,
     ) {
         let kind = FrameKind::of(update);
@@ -75,36 +81,41 @@ impl Breakdown {
         t.frames += 1;
         t.moved += update.moved as u64;
         t.update_ms += update_ms;
-        t.search_ms += search_ms;
-        t.node_pairs += search.map_or(0, |s| s.node_pairs);
+        t.pairs_ms += pairs_ms;
         t.pairs += pairs as u64;
+        if let Some(found) = found {
+            t.told += 1;
+            t.queried += found.queried as u64;
+            if let Some(search) = found.search {
+                t.searched += 1;
+                t.node_pairs += search.node_pairs;
+            }
+        }
     }
 
-    /// The table, one row per kind of frame that occurred: means per frame.
-    pub fn table(&self, counted: bool) -> String {
+    /// The table, one row per kind of frame that occurred: counts, and means
+    /// per frame (node pairs: per frame that searched them).
+    pub fn table(&self) -> String {
         let mut out = String::from(
-            "frame_kind\tframes\tmoved\tupdate_ms\tsearch_ms\tnode_pairs\tpairs\tnode_pairs_per_pair\n",
+            "frame_kind\tframes\tmoved\tupdate_ms\tpairs_ms\tsearched\tnode_pairs\tqueried\tpairs\n",
         );
         for (kind, t) in FrameKind::ALL.iter().zip(&self.totals) {
             if t.frames == 0 {
                 continue;
             }
-            let mean = |x: f64| x / t.frames as f64;
-            let (visits, per_pair) = match counted {
-                true => (
-                    format!("{:.0}", mean(t.node_pairs as f64)),
-                    format!("{:.2}", t.node_pairs as f64 / t.pairs.max(1) as f64),
-                ),
-                false => ("-".to_string(), "-".to_string()),
-            };
+            let mean = |x: f64, of: u64| x / of.max(1) as f64;
+            let told = |text: String| if t.told > 0 { text } else { "-".to_string() };
             out.push_str(&format!(
-                "{}\t{}\t{:.0}\t{:.3}\t{:.3}\t{visits}\t{:.0}\t{per_pair}\n",
+                "{}\t{}\t{:.0}\t{:.3}\t{:.3}\t{}\t{}\t{}\t{:.0}\n",
                 kind.name(),
                 t.frames,
-                mean(t.moved as f64),
-                mean(t.update_ms),
-                mean(t.search_ms),
-                mean(t.pairs as f64),
+                mean(t.moved as f64, t.frames),
+                mean(t.update_ms, t.frames),
+                mean(t.pairs_ms, t.frames),
+                told(t.searched.to_string()),
+                told(format!("{:.0}", mean(t.node_pairs as f64, t.searched))),
+                told(format!("{:.0}", mean(t.queried as f64, t.frames))),
+                mean(t.pairs as f64, t.frames),
             ));
         }
         out
