@@ -1,184 +1,19 @@
 //! The broadphase side by side: update + all pairs per frame on the generated
-//! scenes, for bvol's tree (its pairs kept in a `PairCache`, copied out each
-//! frame; and, as `bvol-search`, searched afresh), a sweep-and-prune baseline, parry3d's `Bvh` (used as
-//! its authors advise: binned build, then per frame insert_or_update_partially,
-//! optimize_incremental, refit and traverse_bvtt_single_tree) and, for small N,
-//! brute force. Every method's pairs are checked equal before timing.
+//! scenes, for every method of [`broadphases`], criterion timing each in turn.
+//! Every method's pairs are checked equal before timing. On a shared machine
+//! whose speed drifts over minutes, `pairs_interleaved` gives the steadier
+//! ratios.
 //!
 //! `cargo bench --bench pairs`; N from `BVOL_BENCH_N` (default 100 000); every method on one thread.
+
+mod broadphases;
 
 use std::hint::black_box;
 use std::time::{Duration, Instant};
 
-use bvol::tree::{PairCache, Tree};
-use bvol::volumes::Aabb;
-use bvol_cli::digest::PairDigest;
+use broadphases::{check_agreement, methods};
 use bvol_cli::scenes::{Scene, SceneKind};
 use criterion::{BenchmarkId, Criterion, criterion_group, criterion_main};
-use parry3d::bounding_volume::Aabb as ParryAabb;
-use parry3d::math::Vector;
-use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
-
-/// A broadphase: brought up to date with every box each frame, then all pairs.
-trait Broadphase {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>);
-}
-
-/// bvol's dynamic tree, on one thread like the others (its builds and pair
-/// search would otherwise use rayon's global pool), its pairs kept in a
-/// `PairCache` (`cache`) or searched afresh each frame.
-struct BvolTree {
-    tree: Option<Tree<Aabb>>,
-    cache: Option<PairCache>,
-    one_thread: rayon::ThreadPool,
-}
-
-impl BvolTree {
-    fn new(cache: bool) -> Self {
-        let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        BvolTree { tree: None, cache: cache.then(PairCache::new), one_thread }
-    }
-}
-
-impl Broadphase for BvolTree {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        let (slot, cache) = (&mut self.tree, &mut self.cache);
-        self.one_thread.install(|| {
-            let tree = match slot {
-                Some(tree) => {
-                    tree.update(boxes).expect("valid boxes");
-                    tree
-                }
-                None => slot.insert(Tree::from_bounds(boxes).expect("valid boxes")),
-            };
-            match cache {
-                Some(cache) => {
-                    cache.update(tree);
-                    pairs.clear();
-                    pairs.extend_from_slice(cache.pairs());
-                }
-                None => {
-                    tree.pairs_into(pairs);
-                }
-            }
-        });
-    }
-}
-
-/// Sort and sweep on x (Baraff 1992), the order kept between frames so the
-/// sort starts nearly sorted.
-#[derive(Default)]
-struct SweepAndPrune(Vec<u32>);
-
-impl Broadphase for SweepAndPrune {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        if self.0.len() != boxes.len() {
-            self.0 = (0..boxes.len() as u32).collect();
-        }
-        self.0.sort_by(|&a, &b| boxes[a as usize].min.x.total_cmp(&boxes[b as usize].min.x));
-        pairs.clear();
-        for (k, &a) in self.0.iter().enumerate() {
-            let ba = &boxes[a as usize];
-            for &b in &self.0[k + 1..] {
-                let bb = &boxes[b as usize];
-                if bb.min.x > ba.max.x {
-                    break;
-                }
-                if ba.overlaps(bb) {
-                    pairs.push((a.min(b), a.max(b)));
-                }
-            }
-        }
-    }
-}
-
-/// parry3d's `Bvh`, pairs filtered to the tight boxes.
-#[derive(Default)]
-struct Parry(Option<(Bvh, BvhWorkspace)>);
-
-fn parry_aabb(b: &Aabb) -> ParryAabb {
-    ParryAabb::new(Vector::new(b.min.x, b.min.y, b.min.z), Vector::new(b.max.x, b.max.y, b.max.z))
-}
-
-impl Broadphase for Parry {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        let (bvh, ws) = match &mut self.0 {
-            Some((bvh, ws)) => {
-                for (i, b) in boxes.iter().enumerate() {
-                    bvh.insert_or_update_partially(parry_aabb(b), i as u32, 0.0);
-                }
-                bvh.optimize_incremental(ws);
-                bvh.refit(ws);
-                (bvh, ws)
-            }
-            None => {
-                let leaves: Vec<ParryAabb> = boxes.iter().map(parry_aabb).collect();
-                let bvh = Bvh::from_leaves(BvhBuildStrategy::Binned, &leaves);
-                let (bvh, ws) = self.0.insert((bvh, BvhWorkspace::default()));
-                (bvh, ws)
-            }
-        };
-        pairs.clear();
-        bvh.traverse_bvtt_single_tree::<false>(ws, &mut |a, b| {
-            if boxes[a as usize].overlaps(&boxes[b as usize]) {
-                pairs.push((a.min(b), a.max(b)));
-            }
-        });
-    }
-}
-
-/// All pairs by testing every pair.
-#[derive(Default)]
-struct BruteForce;
-
-impl Broadphase for BruteForce {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        pairs.clear();
-        for a in 0..boxes.len() {
-            for b in a + 1..boxes.len() {
-                if boxes[a].overlaps(&boxes[b]) {
-                    pairs.push((a as u32, b as u32));
-                }
-            }
-        }
-    }
-}
-
-/// A named way to make a fresh broadphase.
-type Method = (&'static str, fn() -> Box<dyn Broadphase>);
-
-fn methods(n: usize) -> Vec<Method> {
-    let mut out: Vec<Method> = vec![
-        ("bvol", || Box::new(BvolTree::new(true))),
-        ("bvol-search", || Box::new(BvolTree::new(false))),
-        ("sweep-and-prune", || Box::new(SweepAndPrune::default())),
-        ("parry3d", || Box::new(Parry::default())),
-    ];
-    if n <= 20_000 {
-        out.push(("brute-force", || Box::new(BruteForce)));
-    }
-    out
-}
-
-/// Runs every method over the same first frames and insists on equal pair sets.
-fn check_agreement(kind: SceneKind, n: usize) {
-    let mut scene = Scene::new(kind, n, 1);
-    let frames: Vec<Vec<Aabb>> = (0..4).map(|_| scene.step().to_vec()).collect();
-    let mut reference = None;
-    for (name, make) in methods(n) {
-        let mut method = make();
-        let mut pairs = Vec::new();
-        let mut digest = PairDigest::default();
-        for boxes in &frames {
-            method.frame(boxes, &mut pairs);
-            digest += PairDigest::of_pairs(pairs.iter().copied());
-        }
-        match reference {
-            None => reference = Some((name, digest)),
-            Some((first, d)) => assert_eq!(d, digest, "{kind}: {name} disagrees with {first}"),
-        }
-    }
-}
 
 fn pairs(c: &mut Criterion) {
     let n: usize =
