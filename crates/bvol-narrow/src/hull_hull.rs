@@ -11,9 +11,10 @@ use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, centre_line, edge_q
 use crate::warm::{Apart, Feature, WarmStart, answers, margin, retest};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
-/// An edge contact is taken over a face contact only if its separation beats
-/// the face's by more than this (relative to the shapes' size), and a face of
-/// B over a face of A likewise. Resting contacts, where a face and an edge (or
+/// A face of A is taken as the contact's feature when its separation is
+/// within this (relative to the shapes' size) of the least penetration's,
+/// else a face of B within it, else the least penetration's own feature,
+/// which may be an edge pair. Resting contacts, where a face and an edge (or
 /// two faces) are equally deep up to rounding, then keep one manifold from
 /// frame to frame instead of flickering between them (Gregorius GDC 2013
 /// prefers faces by an absolute tolerance). Not relative to the depth, as
@@ -49,7 +50,7 @@ const MASK_DEPTH: f64 = 0.25;
 /// start answered from the bodies' motion alone. Touching: the axis of least
 /// penetration, preferring faces over edges and A's faces over B's within a
 /// small tolerance (2e-5 of the shapes' size), so resting contacts do not
-/// flicker; a face contact clips the incident face of the other shape against
+/// flicker: the depth is at most that much more than the least penetration; a face contact clips the incident face of the other shape against
 /// the reference face (up to 4 points), an edge contact has one point between
 /// the edges.
 ///
@@ -203,9 +204,9 @@ fn full_query<A: Convex, B: Convex>(
     // Touching or close. The greatest separation over the candidate axes is
     // at least the gap along any axis, the centre line's and the cached
     // one's included; the preferences pick a feature at most their slack
-    // below the greatest; so features below this floor can never be picked,
-    // and the queries need not find them (the answer is the same as if they
-    // did).
+    // below the greatest; so features below this floor (a second slack
+    // lower, room for the gaps' rounding) can never be picked, and the
+    // queries need not find them (the answer is the same as if they did).
     let c = centres.unwrap_or(AxisGap {
         axis: DVec3::Y,
         gap: f64::NEG_INFINITY,
@@ -288,15 +289,22 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         slack: f64,
     ) -> (Feature, Answer) {
         let deepest_face = face_a.separation.max(face_b.separation);
-        let preferred = match edge {
-            Some(e) if e.separation > deepest_face + slack => Choice::Edges(e),
-            _ if face_b.separation > face_a.separation + slack => Choice::FaceB(face_b),
-            _ => Choice::FaceA(face_a),
-        };
         let least = match edge {
             Some(e) if e.separation > deepest_face => Choice::Edges(e),
             _ if face_b.separation > face_a.separation => Choice::FaceB(face_b),
             _ => Choice::FaceA(face_a),
+        };
+        // The first of A's face, B's face and the edges within the slack of
+        // the least penetration, each measured against the least itself: a
+        // chain of preferences (faces over the edge within the slack, A's
+        // face over B's within it) let the two slacks add up.
+        let within = least.separation() - slack;
+        let preferred = if face_a.separation >= within {
+            Choice::FaceA(face_a)
+        } else if face_b.separation >= within {
+            Choice::FaceB(face_b)
+        } else {
+            least
         };
         self.touching(preferred)
             .or_else(|| self.touching(least))
