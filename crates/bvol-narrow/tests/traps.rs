@@ -754,6 +754,46 @@ fn warm_start_never_changes_the_answer() {
     assert!(bounded > 0, "the motion never answered on its own in {steps} steps");
 }
 
+/// The test shapes (meshes' hulls, boxes, slabs, rods, sampled spheres,
+/// random hulls) at three scales, resting face on face and creeping down
+/// through touching, turning by 1e-5 rad a step: at every step the warm call
+/// gives exactly the cold call's contact, where features are nearly tied
+/// and the cached witnesses differ most from a cold call's.
+#[test]
+fn warm_start_gives_the_cold_contact_on_resting_shapes() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(28);
+    let mut touching = 0;
+    for scale in [1e-3f32, 1.0, 1e3] {
+        let shapes = common::shapes::all(scale);
+        for sa in shapes.iter().step_by(2) {
+            for sb in shapes.iter().step_by(5) {
+                let top = sa.points.iter().map(|p| p.y).fold(f32::MIN, f32::max);
+                let bottom = sb.points.iter().map(|p| p.y).fold(f32::MAX, f32::min);
+                let mut pa = Pose::IDENTITY;
+                let shift = random_vec(&mut rng, 0.3) * scale;
+                let above = top - bottom + 1e-4 * scale;
+                let mut pb = Pose::new(Vec3::new(shift.x, above, shift.z), Quat::IDENTITY);
+                let spin_a = Quat::from_axis_angle(random_rotation(&mut rng) * Vec3::X, 1e-5);
+                let spin_b = Quat::from_axis_angle(random_rotation(&mut rng) * Vec3::X, 1e-5);
+                let mut warm = WarmStart::default();
+                for step in 0..120 {
+                    let kept = hull_hull(&sa.poly, &pa, &sb.poly, &pb, &mut warm).expect("finite");
+                    let cold = hull_hull(&sa.poly, &pa, &sb.poly, &pb, &mut WarmStart::default())
+                        .expect("finite");
+                    if cold.is_touching() {
+                        touching += 1;
+                        assert_eq!(kept, cold, "{} on {}, step {step}", sb.name, sa.name);
+                    }
+                    pa.rotation = (spin_a * pa.rotation).normalize();
+                    let down = Vec3::new(0.0, -2e-6 * scale, 0.0);
+                    pb = Pose::new(pb.position + down, (spin_b * pb.rotation).normalize());
+                }
+            }
+        }
+    }
+    assert!(touching > 1000, "only {touching} touching steps");
+}
+
 /// A warm start made with other shapes changes no answer: two small boxes
 /// far apart leave a large gap in the cache, and two large boxes at the same
 /// poses, overlapping, are still found touching (the gap measured is the
