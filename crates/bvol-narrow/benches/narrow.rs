@@ -1,9 +1,12 @@
 //! Narrow-phase speed, one thread: the box-box yes/no test, and hull-hull
 //! contacts against parry3d's `contact` on the same pairs, cold (a fresh
 //! warm start each call) and along slowly moving paths (one warm start kept
-//! per pair). Both sides' verdicts are checked equal before timing, except
+//! per pair); and both on the World's diet (`hull_contact_diet`): the pairs
+//! a world's bounds pass on, and resting, grazing and just-clear pairs, at
+//! three scales. Both sides' verdicts are checked equal before timing, except
 //! within 1e-3 of the size of touching, where parry3d is not exact
-//! (PEER_NOTES.md); the exact f64 reference of the tests decides that band.
+//! (PEER_NOTES.md), and on the diet, where parry3d's are counted against the
+//! exact f64 reference of the tests, which bvol's must equal.
 //!
 //! `cargo bench -p bvol-narrow --bench narrow`.
 
@@ -14,7 +17,7 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use bvol_narrow::{Collision, WarmStart, hull_hull, obb_obb};
-use bvol_volumes::{Obb, Pose};
+use bvol_volumes::{Obb, ObbMethod, Pose, Sphere, SphereMethod};
 use common::reference::{Pair, Place};
 use common::shapes::{self, TestShape};
 use common::{parry_pose, random_rotation, random_unit, to_parry};
@@ -148,19 +151,22 @@ impl Posed<'_> {
     }
 }
 
-/// Asserts bvol's verdict (with `warm`) equals parry3d's and the exact one,
-/// away from touching; returns whether the pair was compared.
-fn check(p: &Posed, warm: &mut WarmStart) -> bool {
+/// Asserts bvol's verdict (with `warm`) equals the exact one away from
+/// touching, and parry3d's too where `parry_exact`; returns `None` within
+/// the band, else whether parry3d agreed.
+fn check(p: &Posed, warm: &mut WarmStart, parry_exact: bool) -> Option<bool> {
     let sep = p.exact_separation();
     if sep.abs() <= NEAR_BAND {
-        return false;
+        return None;
     }
     let (pa, pb) = (parry_pose(&p.pose_a), parry_pose(&p.pose_b));
     let parry = query::intersection_test(&pa, &p.a.parry, &pb, &p.b.parry).expect("supported");
     let got = p.bvol(warm).is_touching();
-    assert_eq!(got, parry.intersecting, "{} vs {}: parry3d disagrees", p.a.name, p.b.name);
     assert_eq!(got, sep <= 0.0, "{} vs {}: the exact verdict disagrees", p.a.name, p.b.name);
-    true
+    if parry_exact {
+        assert_eq!(got, parry.intersecting, "{} vs {}: parry3d disagrees", p.a.name, p.b.name);
+    }
+    Some(got == parry.intersecting)
 }
 
 /// Random near pairs: B's origin within 1.1 times the sum of the radii.
@@ -218,7 +224,8 @@ fn moving_pairs(hulls: &[TestShape], pairs: usize, steps: usize) -> Vec<Vec<Pose
 fn hull_contacts(c: &mut Criterion) {
     let hulls = hulls();
     let pairs = near_pairs(&hulls, 512);
-    let compared = pairs.iter().filter(|p| check(p, &mut WarmStart::default())).count();
+    let compared =
+        pairs.iter().filter(|p| check(p, &mut WarmStart::default(), true).is_some()).count();
     let touching = pairs.iter().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
     println!("cold pairs: {} ({touching} touching), {compared} verdicts compared", pairs.len());
     let (apart, touching): (Vec<&Posed>, Vec<&Posed>) =
@@ -248,7 +255,7 @@ fn hull_contacts(c: &mut Criterion) {
     let mut compared = 0;
     for path in &paths {
         let mut warm = WarmStart::default();
-        compared += path.iter().filter(|p| check(p, &mut warm)).count();
+        compared += path.iter().filter(|p| check(p, &mut warm, true).is_some()).count();
     }
     let touching =
         paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
@@ -281,5 +288,146 @@ fn hull_contacts(c: &mut Criterion) {
     group.finish();
 }
 
-criterion_group!(benches, obb_overlaps, box_contacts, hull_contacts);
+/// The World's shapes as `bvol bench world` runs them: the cube and each
+/// shipped mesh's hull, at scales 1e-3, 1 and 1e3.
+fn world_shapes() -> Vec<TestShape> {
+    let mut out = Vec::new();
+    for scale in [1e-3f32, 1.0, 1e3] {
+        let cube = shapes::box_corners(Vec3::splat(0.5))
+            .into_iter()
+            .map(|p| p * scale)
+            .collect::<Vec<_>>();
+        out.push(TestShape::new("cube", scale, &cube));
+        out.extend(shapes::MESHES.iter().map(|m| shapes::mesh_hull(m, scale)));
+    }
+    out
+}
+
+/// What the World's narrow phase is handed: pairs of one shape (as `bvol
+/// bench world` gives every body the same one) whose bounding spheres and
+/// world OBBs (fitted as `FitOptions::default()` fits them) overlap, B's
+/// centre uniform in the ball where the spheres overlap, both turned at
+/// random: the relative poses of a uniform world's bodies whose bounds the
+/// earlier stages could not rule out. `per_shape` pairs of each shape.
+fn world_diet(shapes: &[TestShape], per_shape: usize) -> Vec<Posed<'_>> {
+    let mut rng = SmallRng::seed_from_u64(4);
+    let mut out = Vec::new();
+    for shape in shapes {
+        let obb = Obb::fit(&shape.points, ObbMethod::MinVolume).expect("a solid hull");
+        let sphere = Sphere::fit(&shape.points, SphereMethod::Exact).expect("a solid hull");
+        let mut kept = 0;
+        while kept < per_shape {
+            let pose_a = Pose::new(Vec3::ZERO, random_rotation(&mut rng));
+            let offset = common::random_in_ball(&mut rng, 2.0 * sphere.radius);
+            let pose_b = Pose::new(offset, random_rotation(&mut rng));
+            let spheres = sphere.transformed(&pose_a).overlaps(&sphere.transformed(&pose_b));
+            if spheres && obb.transformed(&pose_a).overlaps(&obb.transformed(&pose_b)) {
+                out.push(Posed { a: shape, b: shape, pose_a, pose_b });
+                kept += 1;
+            }
+        }
+    }
+    out
+}
+
+/// Resting and grazing pairs beyond what a uniform world hands over, for
+/// every two shapes of a scale: B set face down on a face of A (a face of
+/// each, picked at random, turned to face each other, then tilted by
+/// 1e-3 rad), B turned at random against A (grazing: a vertex on a face or
+/// an edge across an edge), and B held just clear of A; each `1e-6` to
+/// `1e-3` of the size from touching, found along the exact reference's
+/// touching offset.
+fn resting_diet<'a>(shapes: &'a [TestShape], per_pair: usize) -> Vec<(&'static str, Posed<'a>)> {
+    let mut rng = SmallRng::seed_from_u64(5);
+    let mut out = Vec::new();
+    for a in shapes {
+        for b in shapes.iter().filter(|b| b.scale == a.scale) {
+            for k in 0..per_pair {
+                let fa = rng.random_range(0..a.reference.face_count());
+                let fb = rng.random_range(0..b.reference.face_count());
+                let (na, nb) = (a.reference.normal(fa).as_vec3(), b.reference.normal(fb).as_vec3());
+                let facing = Quat::from_rotation_arc(nb, -na);
+                let twist = Quat::from_axis_angle(na, rng.random_range(0.0..6.3));
+                let tilt = Quat::from_axis_angle(random_unit(&mut rng), 1e-3);
+                let (kind, turn, up, sign) = match k % 3 {
+                    0 => ("resting", tilt * twist * facing, na.as_dvec3(), -1.0),
+                    1 => (
+                        "grazing",
+                        random_rotation(&mut rng),
+                        random_unit(&mut rng).as_dvec3(),
+                        -1.0,
+                    ),
+                    _ => ("near", random_rotation(&mut rng), random_unit(&mut rng).as_dvec3(), 1.0),
+                };
+                let pose_a = Pose::IDENTITY;
+                let start = Pose::new(Vec3::ZERO, turn);
+                let pair = Pair {
+                    a: &a.reference,
+                    pa: Place::of(&pose_a),
+                    b: &b.reference,
+                    pb: Place::of(&start),
+                };
+                let touching = pair.touching_offset(up, &pair.candidates());
+                let size = a.size.max(b.size);
+                let off = sign * 10f64.powf(rng.random_range(-6.0..-3.0)) * size;
+                let pose_b = Pose::new((up * (touching + off)).as_vec3(), turn);
+                out.push((kind, Posed { a, b, pose_a, pose_b }));
+            }
+        }
+    }
+    out
+}
+
+/// Hull contacts on the World's diet, cold, bvol against parry3d's `contact`
+/// on the same pairs: the pairs a uniform world's bounds pass on (all, then
+/// by the exact separation: touching deeper than 1e-3 of the size, within
+/// 1e-3 of touching, apart by more), and resting, grazing and just-clear
+/// pairs of every two shapes at each scale.
+fn hull_contact_diet(c: &mut Criterion) {
+    let shapes = world_shapes();
+    let world = world_diet(&shapes, 200);
+    let resting = resting_diet(&shapes, 12);
+    // parry3d's verdicts are not exact at every scale (PEER_NOTES.md): counted, not asserted.
+    let verdicts: Vec<bool> =
+        world.iter().filter_map(|p| check(p, &mut WarmStart::default(), false)).collect();
+    let wrong = verdicts.iter().filter(|&&agrees| !agrees).count();
+    println!(
+        "world diet: {} pairs, {} verdicts compared with the exact reference, parry3d's wrong on {wrong}",
+        world.len(),
+        verdicts.len()
+    );
+    let mut sets: Vec<(&str, Vec<&Posed>)> = vec![("world", world.iter().collect())];
+    for (name, keep) in [
+        ("world-touching", &(|s: f64| s < -NEAR_BAND) as &dyn Fn(f64) -> bool),
+        ("world-near", &|s: f64| s.abs() <= NEAR_BAND),
+        ("world-apart", &|s: f64| s > NEAR_BAND),
+    ] {
+        sets.push((name, world.iter().filter(|p| keep(p.exact_separation())).collect()));
+    }
+    for kind in ["resting", "grazing", "near"] {
+        sets.push((kind, resting.iter().filter(|r| r.0 == kind).map(|r| &r.1).collect()));
+    }
+    let mut group = c.benchmark_group("hull_contact_diet");
+    settings(&mut group);
+    for (name, set) in &sets {
+        let touching =
+            set.iter().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
+        println!("{name}: {} pairs, {touching} touching", set.len());
+        group.throughput(Throughput::Elements(set.len() as u64));
+        group.bench_function(format!("bvol/{name}"), |bench| {
+            bench.iter(|| {
+                black_box(set)
+                    .iter()
+                    .filter(|p| p.bvol(&mut WarmStart::default()).is_touching())
+                    .count()
+            })
+        });
+        group.bench_function(format!("parry3d/{name}"), |bench| {
+            bench.iter(|| black_box(set).iter().filter(|p| p.parry().is_some()).count())
+        });
+    }
+    group.finish();
+}
+
+criterion_group!(benches, obb_overlaps, box_contacts, hull_contacts, hull_contact_diet);
 criterion_main!(benches);
