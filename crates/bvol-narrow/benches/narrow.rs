@@ -427,7 +427,54 @@ fn hull_contact_diet(c: &mut Criterion) {
         });
     }
     group.finish();
+
+    // The touching and nearly touching pairs moving slowly: each frame B
+    // moves 1e-3 of the size along its own direction and turns 2e-3 rad.
+    let near: Vec<&Posed> = world
+        .iter()
+        .filter(|p| p.exact_separation() < NEAR_BAND)
+        .chain(resting.iter().map(|r| &r.1))
+        .collect();
+    let mut rng = SmallRng::seed_from_u64(6);
+    let paths: Vec<Vec<Posed>> = near
+        .iter()
+        .map(|p| {
+            let step = random_unit(&mut rng) * 1e-3 * p.a.size.max(p.b.size) as f32;
+            let spin = Quat::from_axis_angle(random_unit(&mut rng), 2e-3);
+            (0..DIET_FRAMES)
+                .scan(p.pose_b, |pose, _| {
+                    let now = *pose;
+                    *pose = Pose::new(pose.position + step, (spin * pose.rotation).normalize());
+                    Some(Posed { a: p.a, b: p.b, pose_a: p.pose_a, pose_b: now })
+                })
+                .collect()
+        })
+        .collect();
+    let steps = paths.iter().map(Vec::len).sum::<usize>();
+    let touching =
+        paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
+    println!("diet moving: {} paths, {steps} steps ({touching} touching)", paths.len());
+    let mut group = c.benchmark_group("hull_contact_diet_moving");
+    settings(&mut group);
+    group.throughput(Throughput::Elements(steps as u64));
+    group.bench_function("bvol_warm", |bench| {
+        bench.iter(|| {
+            let mut touching = 0;
+            for path in black_box(&paths) {
+                let mut warm = WarmStart::default();
+                touching += path.iter().filter(|p| p.bvol(&mut warm).is_touching()).count();
+            }
+            touching
+        })
+    });
+    group.bench_function("parry3d", |bench| {
+        bench.iter(|| black_box(&paths).iter().flatten().filter(|p| p.parry().is_some()).count())
+    });
+    group.finish();
 }
+
+/// Frames of each slowly moving diet pair.
+const DIET_FRAMES: usize = 20;
 
 criterion_group!(benches, obb_overlaps, box_contacts, hull_contacts, hull_contact_diet);
 criterion_main!(benches);
