@@ -263,27 +263,36 @@ fn hull_contacts(c: &mut Criterion) {
         "moving pairs: {} paths, {steps} steps ({touching} touching), {compared} verdicts compared",
         paths.len()
     );
-    let mut group = c.benchmark_group("hull_contact_moving");
+    time_paths(c, "hull_contact_moving", &paths, true);
+}
+
+/// Times `paths` in group `name`: bvol with one warm start kept per path,
+/// bvol with each call cold (where `cold`), and parry3d.
+fn time_paths(c: &mut Criterion, name: &str, paths: &[Vec<Posed>], cold: bool) {
+    let steps = paths.iter().map(Vec::len).sum::<usize>();
+    let mut group = c.benchmark_group(name);
     settings(&mut group);
     group.throughput(Throughput::Elements(steps as u64));
     group.bench_function("bvol_warm", |bench| {
         bench.iter(|| {
             let mut touching = 0;
-            for path in black_box(&paths) {
+            for path in black_box(paths) {
                 let mut warm = WarmStart::default();
                 touching += path.iter().filter(|p| p.bvol(&mut warm).is_touching()).count();
             }
             touching
         })
     });
-    group.bench_function("bvol_cold", |bench| {
-        bench.iter(|| {
-            let all = black_box(&paths).iter().flatten();
-            all.filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count()
-        })
-    });
+    if cold {
+        group.bench_function("bvol_cold", |bench| {
+            bench.iter(|| {
+                let all = black_box(paths).iter().flatten();
+                all.filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count()
+            })
+        });
+    }
     group.bench_function("parry3d", |bench| {
-        bench.iter(|| black_box(&paths).iter().flatten().filter(|p| p.parry().is_some()).count())
+        bench.iter(|| black_box(paths).iter().flatten().filter(|p| p.parry().is_some()).count())
     });
     group.finish();
 }
@@ -454,23 +463,7 @@ fn hull_contact_diet(c: &mut Criterion) {
     let touching =
         paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
     println!("diet moving: {} paths, {steps} steps ({touching} touching)", paths.len());
-    let mut group = c.benchmark_group("hull_contact_diet_moving");
-    settings(&mut group);
-    group.throughput(Throughput::Elements(steps as u64));
-    group.bench_function("bvol_warm", |bench| {
-        bench.iter(|| {
-            let mut touching = 0;
-            for path in black_box(&paths) {
-                let mut warm = WarmStart::default();
-                touching += path.iter().filter(|p| p.bvol(&mut warm).is_touching()).count();
-            }
-            touching
-        })
-    });
-    group.bench_function("parry3d", |bench| {
-        bench.iter(|| black_box(&paths).iter().flatten().filter(|p| p.parry().is_some()).count())
-    });
-    group.finish();
+    time_paths(c, "hull_contact_diet_moving", &paths, false);
 }
 
 /// Frames of each slowly moving diet pair.
