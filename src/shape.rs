@@ -366,8 +366,7 @@ fn hull_part(name: &str, points: &[Vec3]) -> Result<Part, ShapeError> {
     if let Some(point) = points.iter().position(beyond) {
         return Err(ShapeError::OutOfRange { part: name.to_owned(), point });
     }
-    let polyhedron = Polyhedron::from_points(points)
+    let part = HullPart::from_points(points)
         .map_err(|reason| ShapeError::Part { part: name.to_owned(), reason })?;
-    let hull = ConvexHull::new(points)?;
-    Ok(Part::Hull(Box::new(HullPart { polyhedron, hull })))
+    Ok(Part::Hull(Box::new(part)))
 }

@@ -20,7 +20,10 @@ pub enum ShapeError {
         /// Position of the offending point in the input slice.
         index: usize,
     },
-    /// The points do not span a solid: fewer than 4 of them are non-coplanar.
+    /// The points do not span a solid: one point, points on a line, a hull
+    /// handed over flat, or flat points too far from the origin for their
+    /// thickness ([`FLAT_THICKNESS`](crate::FLAT_THICKNESS)) to show at f32
+    /// precision.
     Degenerate {
         /// Dimension of their hull: 0 (one point), 1 (a segment) or 2 (flat).
         dimension: u8,
@@ -46,7 +49,7 @@ impl fmt::Display for ShapeError {
             ),
             ShapeError::Degenerate { dimension } => write!(
                 f,
-                "at f32 precision the points span {dimension} dimension(s) (points within 3 f32 epsilons of the shape's size of a line or plane count as on it), not a solid: a polyhedron needs 4 non-coplanar points"
+                "at f32 precision the points span {dimension} dimension(s) (points within 3 f32 epsilons of the shape's size of a line or plane count as on it), not a solid: a polyhedron needs 4 non-coplanar points (flat points are thickened, unless too far from the origin for the thickness to show)"
             ),
             ShapeError::BadHalfExtents => {
                 write!(f, "cuboid half extents must be finite and greater than zero")

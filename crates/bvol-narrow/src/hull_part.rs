@@ -4,6 +4,7 @@
 use bvol_volumes::{Aabb, ConvexHull, Obb, Ray, Sphere};
 use glam::{DMat3, DVec3, Mat3, Vec3};
 
+use crate::flat::solid_hull;
 use crate::mass::outer;
 use crate::{MassProperties, PartKind, Polyhedron, ShapeError};
 
@@ -14,6 +15,15 @@ pub struct HullPart {
     pub polyhedron: Polyhedron,
     /// Its faces as planes and triangles, for ray casts and mass properties.
     pub hull: ConvexHull,
+}
+
+impl HullPart {
+    /// The hull of `points` as a part, flat points given a thickness as
+    /// [`Polyhedron::from_points`] gives them, with its errors.
+    pub fn from_points(points: &[Vec3]) -> Result<HullPart, ShapeError> {
+        let hull = solid_hull(points)?;
+        Ok(HullPart { polyhedron: Polyhedron::from_hull(&hull)?, hull })
+    }
 }
 
 impl PartKind for HullPart {

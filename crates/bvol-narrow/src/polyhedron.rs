@@ -4,7 +4,7 @@ use std::ops::Range;
 use std::sync::OnceLock;
 use std::sync::atomic::{AtomicU32, Ordering};
 
-use bvol_volumes::{ConvexHull, FitError};
+use bvol_volumes::ConvexHull;
 use glam::{DVec3, Vec3};
 
 use crate::ShapeError;
@@ -12,6 +12,7 @@ use crate::arc::Arc;
 use crate::box_numbering::BoxNumbering;
 use crate::cluster::{Cap, Cluster, group};
 use crate::convex::Convex;
+use crate::flat::solid_hull;
 use crate::grid::{SEEDS, seed_direction, seed_slot};
 use crate::lanes::{CapLanes, Witness, lanes_left};
 use crate::plane::Plane;
@@ -80,20 +81,35 @@ pub struct Polyhedron {
 static NEXT_ID: AtomicU32 = AtomicU32::new(0);
 
 impl Polyhedron {
-    /// The convex hull of the points, as a polyhedron.
+    /// The convex hull of the points, as a polyhedron. Flat points (all
+    /// within the hull's tolerance, about 1e-7 of their extent, of a plane:
+    /// a floor tile, a sheet) are given a thickness of
+    /// [`FLAT_THICKNESS`](crate::FLAT_THICKNESS) of their size, centred on
+    /// their plane, and touch on either face.
     ///
     /// No points is [`ShapeError::Empty`]; a NaN or infinite coordinate is
     /// [`ShapeError::NonFinite`], one beyond
-    /// [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE) [`ShapeError::OutOfRange`]; points with fewer than 4 non-coplanar among
-    /// them (to the hull's tolerance, about 1e-7 of their extent) are
-    /// [`ShapeError::Degenerate`].
+    /// [`MAX_COORDINATE`](bvol_volumes::MAX_COORDINATE)
+    /// [`ShapeError::OutOfRange`]; a point, points on a line, and flat points
+    /// whose plane is too far from the origin for the thickness to show at
+    /// f32 precision are [`ShapeError::Degenerate`].
+    ///
+    /// ```
+    /// use bvol_narrow::{Collision, Polyhedron, Pose, WarmStart, hull_hull};
+    /// use glam::{Quat, Vec3};
+    /// // A 2 x 2 tile in the plane y = 0, and a unit cube sunk 0.1 into it from below.
+    /// let tile = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)].map(|(x, z)| Vec3::new(x, 0.0, z));
+    /// let tile = Polyhedron::from_points(&tile)?;
+    /// let cube = Polyhedron::cuboid(Vec3::splat(0.5))?;
+    /// let below = Pose::new(Vec3::new(0.0, -0.4, 0.0), Quat::IDENTITY);
+    /// let hit = hull_hull(&tile, &Pose::IDENTITY, &cube, &below, &mut WarmStart::default())?;
+    /// let Collision::Touching(contact) = hit else { panic!("the cube reaches 0.1 above the tile") };
+    /// assert_eq!(contact.normal, -Vec3::Y);
+    /// assert!((contact.depth - 0.1).abs() < 1e-4);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
     pub fn from_points(points: &[Vec3]) -> Result<Polyhedron, ShapeError> {
-        let hull = ConvexHull::new(points).map_err(|e| match e {
-            FitError::Empty => ShapeError::Empty,
-            FitError::NonFinite { index } => ShapeError::NonFinite { index },
-            FitError::OutOfRange { index } => ShapeError::OutOfRange { index },
-        })?;
-        Polyhedron::from_hull(&hull)
+        Polyhedron::from_hull(&solid_hull(points)?)
     }
 
     /// A polyhedron from a convex hull: its vertices, its faces (convex

@@ -19,9 +19,9 @@
 mod common;
 
 use bvol_narrow::{
-    Body, Capsule, Collision, Contact, NarrowError, Polyhedron, Pose, ShapeError, WarmStart,
-    capsule_capsule, capsule_hull, capsule_sphere, hull_hull, obb_obb, sphere_hull, sphere_obb,
-    sphere_sphere,
+    Body, Capsule, Collision, Contact, FLAT_THICKNESS, NarrowError, Polyhedron, Pose, ShapeError,
+    WarmStart, capsule_capsule, capsule_hull, capsule_sphere, hull_hull, obb_obb, sphere_hull,
+    sphere_obb, sphere_sphere,
 };
 use bvol_volumes::{ConvexHull, Obb, Sphere};
 use common::random_rotation;
@@ -869,11 +869,75 @@ fn motion(points: &[Vec3], then: &Pose, now: &Pose) -> f64 {
     (now.position.as_dvec3() - then.position.as_dvec3()).length() + 2.0 * far * (angle / 2.0).sin()
 }
 
+/// Flat point sets are taken, [`FLAT_THICKNESS`] of their size thick: a
+/// square tile and a triangle, at scales 1e-3, 1 and 1e3, turned at random,
+/// against a cube coming at them from either side, square on or turned,
+/// from 1e-3 of the size apart to 1e-3 deep. Every answer is checked against
+/// the exact reference for the tile moved half the thickness to each side of
+/// its plane, and a touching normal points to the side the cube is on.
+#[test]
+fn flat_shapes_touch_on_either_face() {
+    let mut rng = Xoshiro256PlusPlus::seed_from_u64(29);
+    let square = [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)];
+    let triangle = [(-1.0, -1.0), (1.0, -0.5), (0.0, 1.0)];
+    let mut sides = [0usize; 2];
+    for scale in [1e-3f32, 1.0, 1e3] {
+        for outline in [&square[..], &triangle[..]] {
+            let turn = random_rotation(&mut rng);
+            let n = turn * Vec3::Y;
+            let flat: Vec<Vec3> =
+                outline.iter().map(|&(x, z)| turn * Vec3::new(x, 0.0, z) * scale).collect();
+            // The set's size: the sum of its half extents along the axes.
+            let (lo, hi) = flat
+                .iter()
+                .fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(l, h), &q| (l.min(q), h.max(q)));
+            let half =
+                n.as_dvec3() * 0.5 * FLAT_THICKNESS * f64::from(((hi - lo) * 0.5).element_sum());
+            let thick: Vec<Vec3> = flat
+                .iter()
+                .flat_map(|q| [(q.as_dvec3() + half).as_vec3(), (q.as_dvec3() - half).as_vec3()])
+                .collect();
+            let tile = Polyhedron::from_points(&flat).expect("a flat set is taken");
+            assert_eq!(tile.vertices().len(), 2 * flat.len(), "{scale}: each point on both faces");
+            let cube = Polyhedron::cuboid(Vec3::splat(0.3 * scale)).expect("a cube");
+            let cube_points = corners(Vec3::splat(0.3 * scale));
+            for case in 0..40 {
+                let side = if case % 2 == 0 { 1.0 } else { -1.0 };
+                let q = if case % 4 < 2 { turn } else { random_rotation(&mut rng) };
+                let low = cube_points
+                    .iter()
+                    .map(|&c| (q * c).dot(n * side))
+                    .fold(f32::INFINITY, f32::min);
+                let gap = rng.random_range(-1e-3..1e-3) * scale;
+                let along = (rng.random::<f32>() - 0.5) * scale;
+                let at = n * side * (gap - low) + turn * Vec3::new(along, 0.0, 0.0);
+                let pose = Pose::new(at, q);
+                let hit =
+                    hull_hull(&tile, &Pose::IDENTITY, &cube, &pose, &mut WarmStart::default())
+                        .expect("finite");
+                let (wa, wb) =
+                    (world_hull(&thick, &Pose::IDENTITY), world_hull(&cube_points, &pose));
+                check_against_brute(&hit, &wa, &wb, &format!("{scale} {outline:?} case {case}"));
+                if let Collision::Touching(c) = hit {
+                    assert!(
+                        c.normal.dot(n) * side > 0.0,
+                        "{scale} case {case}: normal {} on side {side}",
+                        c.normal
+                    );
+                    sides[usize::from(side > 0.0)] += 1;
+                }
+            }
+        }
+    }
+    assert!(sides[0] > 20 && sides[1] > 20, "touching on each side: {sides:?}");
+}
+
 // ---------------------------------------------------------------------------
 // Bad input.
 
-/// Fewer than 4 non-coplanar points, no points, non-finite points and bad
-/// half extents are typed errors.
+/// A point, points on a line, flat points that cannot be thickened, no
+/// points, non-finite points and bad half extents are typed errors; a flat
+/// hull handed over as it is, too.
 #[test]
 fn bad_shapes_are_typed_errors() {
     let p = |x: f32, y: f32, z: f32| Vec3::new(x, y, z);
@@ -890,17 +954,10 @@ fn bad_shapes_are_typed_errors() {
         Polyhedron::from_points(&line).unwrap_err(),
         ShapeError::Degenerate { dimension: 1 }
     );
+    // Flat, but too far from the origin for the thickness to show in f32.
+    let far = [p(0.0, 0.0, 1e9), p(1.0, 0.0, 1e9), p(0.0, 1.0, 1e9)];
+    assert_eq!(Polyhedron::from_points(&far).unwrap_err(), ShapeError::Degenerate { dimension: 2 });
     let three = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(0.0, 1.0, 0.0)];
-    assert_eq!(
-        Polyhedron::from_points(&three).unwrap_err(),
-        ShapeError::Degenerate { dimension: 2 }
-    );
-    let square =
-        [p(0.0, 0.0, 5.0), p(1.0, 0.0, 5.0), p(1.0, 1.0, 5.0), p(0.0, 1.0, 5.0), p(0.5, 0.5, 5.0)];
-    assert_eq!(
-        Polyhedron::from_points(&square).unwrap_err(),
-        ShapeError::Degenerate { dimension: 2 }
-    );
     let nan = [p(0.0, 0.0, 0.0), p(1.0, 0.0, 0.0), p(0.0, f32::NAN, 0.0), p(0.0, 0.0, 1.0)];
     assert_eq!(Polyhedron::from_points(&nan).unwrap_err(), ShapeError::NonFinite { index: 2 });
     let inf = [p(0.0, 0.0, 0.0), p(f32::INFINITY, 0.0, 0.0), p(0.0, 1.0, 0.0), p(0.0, 0.0, 1.0)];

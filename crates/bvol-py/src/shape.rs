@@ -45,7 +45,8 @@ impl PyShape {
         Self::made(Shape::capsule(radius, half_height))
     }
 
-    /// The convex hull of the (N, 3) `points`.
+    /// The convex hull of the (N, 3) `points`; flat points are made a thin
+    /// slab.
     #[staticmethod]
     fn convex(py: Python<'_>, points: &Bound<'_, PyAny>) -> PyResult<Self> {
         let points = vectors("points", points)?;

@@ -159,7 +159,7 @@ class Shape:
         """A capsule along y: a segment from -half_height to half_height swept by a ball."""
     @staticmethod
     def convex(points: _FloatArray) -> Shape:
-        """The convex hull of the (N, 3) points."""
+        """The convex hull of the (N, 3) points; flat points are made a thin slab."""
     @staticmethod
     def from_obj(
         path: Union[str, PathLike[str]],
