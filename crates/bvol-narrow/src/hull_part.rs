@@ -105,11 +105,12 @@ impl PartKind for HullPart {
                 let hull = ConvexHull::cuboid(half).map_err(hull_error)?;
                 Ok(HullPart { polyhedron: Polyhedron::cuboid(half)?, hull })
             }
+            // A thin slab stretched along its plane may come out flat at
+            // its new size: thickened again, as a flat set is.
             None => {
                 let vertices: Vec<Vec3> =
                     self.polyhedron.vertices().iter().map(|&v| v * factor).collect();
-                let hull = ConvexHull::new(&vertices).map_err(hull_error)?;
-                Ok(HullPart { polyhedron: Polyhedron::from_hull(&hull)?, hull })
+                HullPart::from_points(&vertices)
             }
         }
     }

@@ -19,9 +19,9 @@
 mod common;
 
 use bvol_narrow::{
-    Body, Capsule, Collision, Contact, FLAT_THICKNESS, NarrowError, Polyhedron, Pose, ShapeError,
-    WarmStart, capsule_capsule, capsule_hull, capsule_sphere, hull_hull, obb_obb, sphere_hull,
-    sphere_obb, sphere_sphere,
+    Body, Capsule, Collision, Contact, FLAT_THICKNESS, HullPart, NarrowError, Part, Polyhedron,
+    Pose, ShapeError, WarmStart, capsule_capsule, capsule_hull, capsule_sphere, hull_hull, obb_obb,
+    sphere_hull, sphere_obb, sphere_sphere,
 };
 use bvol_volumes::{ConvexHull, Obb, Sphere};
 use common::random_rotation;
@@ -930,6 +930,17 @@ fn flat_shapes_touch_on_either_face() {
         }
     }
     assert!(sides[0] > 20 && sides[1] > 20, "touching on each side: {sides:?}");
+    // Stretched a thousandfold along its plane, a tile's slab would be flat
+    // at its new size: it is thickened again.
+    let tile: Vec<Vec3> = square.iter().map(|&(x, z)| Vec3::new(x, 0.0, z)).collect();
+    let part = Part::Hull(Box::new(HullPart::from_points(&tile).expect("a flat set is taken")));
+    let Part::Hull(wide) = part.scaled(Vec3::new(1e3, 1.0, 1e3)).expect("stretched") else {
+        panic!("a hull scales to a hull")
+    };
+    assert_eq!(wide.hull.dimension(), 3);
+    let depth = wide.polyhedron.vertices().iter().map(|v| v.y).fold(f32::MIN, f32::max);
+    let expected = 0.5 * FLAT_THICKNESS * 2e3;
+    assert!((f64::from(depth) - expected).abs() < 1e-2 * expected, "half thickness {depth}");
 }
 
 // ---------------------------------------------------------------------------
