@@ -1,7 +1,9 @@
-//! `bvol bench world`: the whole frame of a [`World`] on the uniform scene's
-//! motion, bodies of one mesh shape spinning slowly: one row per stage, with
-//! its pairs and milliseconds per frame; then the same boxes through the tree
-//! alone, for the ratio of the whole frame to the broadphase.
+//! `bvol bench world`: the whole frame of a [`World`] on a generated scene's
+//! motion (the uniform scene's by default; a pile or a heap to time bodies
+//! at rest), bodies of one mesh shape spinning slowly while they move: one
+//! row per stage, with its pairs and milliseconds per frame; then the same
+//! boxes through the tree alone, for the ratio of the whole frame to the
+//! broadphase.
 
 use std::path::PathBuf;
 use std::sync::Arc;
@@ -24,9 +26,18 @@ pub struct WorldArgs {
     /// scaled to the scene's body size. Default: a unit cube.
     #[arg(long)]
     shape: Option<PathBuf>,
-    /// Frames to time, after one to load the world.
+    /// The scene whose boxes place the bodies: uniform, clustered, mixed,
+    /// pile, teleport, flat, heap, ground or fast (a body sits at its box's
+    /// centre, and turns only while it moves).
+    #[arg(long, default_value = "uniform")]
+    scene: SceneKind,
+    /// Frames to time, after one to load the world and the settling ones.
     #[arg(long, default_value_t = 30)]
     frames: usize,
+    /// Frames to run untimed first: a pile's bodies fall for about 120
+    /// frames at 100 000 bodies before they all rest.
+    #[arg(long, default_value_t = 0)]
+    settle: usize,
     /// Seed of the scene.
     #[arg(long, default_value_t = 1)]
     seed: u64,
@@ -101,7 +112,7 @@ struct Measured {
 
 /// Runs the world, then the tree alone on the same leaf boxes.
 fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
-    let mut scene = Scene::new(SceneKind::Uniform, args.n, args.seed);
+    let mut scene = Scene::new(args.scene, args.n, args.seed);
     let mut world = World::new();
     let mut ids: Vec<BodyId> = Vec::with_capacity(args.n);
     let spins: Vec<Quat> =
@@ -112,13 +123,17 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
     let mut totals = Vec::with_capacity(args.frames);
     let mut leaves: Vec<Vec<Aabb>> = Vec::new();
     let mut setting = Duration::ZERO;
-    for f in 0..=args.frames {
+    for f in 0..=args.settle + args.frames {
         let boxes = scene.step();
-        poses.clear();
+        let first = poses.is_empty();
         for (i, b) in boxes.iter().enumerate() {
-            rotations[i] = (spins[i] * rotations[i]).normalize();
-            poses.push(Pose::new(b.center(), rotations[i]));
+            // A body at rest keeps its pose to the bit.
+            if first || b.center() != poses[i].position {
+                rotations[i] = (spins[i] * rotations[i]).normalize();
+            }
         }
+        poses.clear();
+        poses.extend(boxes.iter().zip(&rotations).map(|(b, &r)| Pose::new(b.center(), r)));
         if f == 0 {
             for p in &poses {
                 ids.push(
@@ -128,10 +143,12 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
         } else {
             let started = Instant::now();
             world.set_poses(&ids, &poses).map_err(|e| e.to_string())?;
-            setting += started.elapsed();
+            if f > args.settle {
+                setting += started.elapsed();
+            }
         }
         let stats = *world.update();
-        if f > 0 {
+        if f > args.settle {
             totals.push(stats);
             leaves.push(ids.iter().map(|&id| leaf(&world, id)).collect());
         }
@@ -188,10 +205,12 @@ fn print(measured: &Measured, args: &WorldArgs) {
     println!("whole frame\t-\t{total:.3}");
     println!("tree alone (bench pairs)\t-\t{tree_ms:.3}");
     println!(
-        "# n {}, {} frames, {} threads; whole frame / tree alone = {:.2}; bounds refit {:.1} M bodies/s, \
-         set poses + refit {:.1} M bodies/s",
+        "# n {}, scene {}, {} frames after {} settling, {} threads; whole frame / tree alone = {:.2}; \
+         bounds refit {:.1} M bodies/s, set poses + refit {:.1} M bodies/s",
         args.n,
+        args.scene,
         totals.len(),
+        args.settle,
         args.threads,
         total / tree_ms,
         moved / bounds / 1e3,
