@@ -35,6 +35,42 @@ pub(crate) struct PairState {
     pub(crate) more: Box<[WarmStart]>,
     /// Whether it touched.
     pub(crate) touching: bool,
+    /// Whether it was tested at an earlier update (a fresh state was not).
+    pub(crate) tested: bool,
+}
+
+/// What lets a pair go untested: which bodies this update placed (a bit a
+/// slot), and last update's events, sorted by slots, which hold the contact
+/// of every pair that touched. A pair neither of whose bodies was placed
+/// since its last test has the same poses, and so the same answer: a warm
+/// start never changes an answer ([`bvol_narrow::hull_hull`]).
+#[derive(Clone, Copy)]
+pub(crate) struct Still<'a> {
+    pub(crate) placed: &'a [u64],
+    pub(crate) last: &'a [ContactEvent],
+}
+
+impl Still<'_> {
+    /// Whether neither body of the pair was placed this update.
+    fn unmoved(&self, (a, b): (u32, u32)) -> bool {
+        let placed = |s: u32| self.placed[s as usize / 64] & (1 << (s % 64)) != 0;
+        !placed(a) && !placed(b)
+    }
+
+    /// The pair's contact at the last update, looked up from `*at` on
+    /// (moved on, so a run's lookups take one pass over the events).
+    fn last_contact(&self, bodies: &Bodies, (a, b): (u32, u32), at: &mut usize) -> Option<Contact> {
+        let key = |e: &ContactEvent| (e.a.index, e.b.index);
+        while self.last.get(*at).is_some_and(|e| key(e) < (a, b)) {
+            *at += 1;
+        }
+        let (id_a, id_b) = (bodies.id_of(a), bodies.id_of(b));
+        self.last[*at..]
+            .iter()
+            .take_while(|e| key(e) == (a, b))
+            .filter(|e| e.a == id_a && e.b == id_b)
+            .find_map(|e| e.contact)
+    }
 }
 
 /// The narrow phase of one frame: each of `pairs` (sorted by slot) tested,
@@ -49,6 +85,7 @@ pub(crate) struct PairState {
 /// once a frame). `spare` and `runs` are buffers kept from frame to frame.
 pub(crate) fn narrow_phase(
     bodies: &Bodies,
+    still: Still,
     pairs: &[(u32, u32)],
     states: &mut PairStates,
     spare: &mut PairStates,
@@ -69,9 +106,9 @@ pub(crate) fn narrow_phase(
     let ended: Vec<(u32, u32)> = ended.into_iter().map(|(key, _)| key).collect();
     let orphans = !events.is_empty();
     let touching = if rayon::current_num_threads() == 1 || next.is_empty() {
-        test_run(bodies, &mut next, pairs, &ended, events)
+        test_run(bodies, still, &mut next, pairs, &ended, events)
     } else {
-        test_in_runs(bodies, &mut next, pairs, &ended, runs, events)
+        test_in_runs(bodies, still, &mut next, pairs, &ended, runs, events)
     };
     let kept_keys = kept.iter().map(|&(key, _)| key).collect();
     if !kept.is_empty() {
@@ -116,6 +153,7 @@ fn carry_over(old: &mut PairStates, pairs: &[(u32, u32)], next: &mut PairStates)
 /// stage on 100 000 cubes.) Returns how many touch.
 fn test_in_runs(
     bodies: &Bodies,
+    still: Still,
     states: &mut [((u32, u32), PairState)],
     pairs: &[(u32, u32)],
     ended: &[(u32, u32)],
@@ -136,7 +174,7 @@ fn test_in_runs(
         .map(|(r, (chunk, out))| {
             let gone = &ended[if r == 0 { 0 } else { below(r) }..below(r + 1)];
             out.clear();
-            test_run(bodies, chunk, &pairs[r * run..], gone, out)
+            test_run(bodies, still, chunk, &pairs[r * run..], gone, out)
         })
         .sum();
     runs.iter().for_each(|out| events.extend_from_slice(out));
@@ -150,6 +188,7 @@ fn test_in_runs(
 /// early.
 fn test_run(
     bodies: &Bodies,
+    still: Still,
     run: &mut [((u32, u32), PairState)],
     ahead: &[(u32, u32)],
     ended: &[(u32, u32)],
@@ -157,13 +196,23 @@ fn test_run(
 ) -> usize {
     let mut ended = ended.iter().peekable();
     let mut touching = 0;
+    // Where the run's pairs begin among last update's events.
+    let mut at = run
+        .first()
+        .map_or(0, |&(first, _)| still.last.partition_point(|e| (e.a.index, e.b.index) < first));
     for (k, &mut ((a, b), ref mut state)) in run.iter_mut().enumerate() {
         if let Some(&(_, later)) = ahead.get(k + AHEAD) {
             prefetch(&bodies.poses[later as usize]);
             prefetch(&bodies.shapes[later as usize]);
             prefetch(&bodies.user_data[later as usize]);
         }
-        let contact = collide(bodies, a, b, state);
+        let kept = match state.tested && still.unmoved((a, b)) {
+            true if state.touching => still.last_contact(bodies, (a, b), &mut at).map(Some),
+            true => Some(None),
+            false => None,
+        };
+        let contact = kept.unwrap_or_else(|| collide(bodies, a, b, state));
+        state.tested = true;
         let was = state.touching;
         state.touching = contact.is_some();
         touching += usize::from(state.touching);

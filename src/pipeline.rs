@@ -12,7 +12,7 @@ use rayon::prelude::*;
 
 use crate::bodies::BODIES_AHEAD;
 use crate::broadphase::Broadphase;
-use crate::narrow_phase::narrow_phase;
+use crate::narrow_phase::{Still, narrow_phase};
 use crate::scratch::Scratch;
 use crate::stats::FrameStats;
 use crate::{BodyKind, World};
@@ -55,6 +55,12 @@ impl<B: Broadphase> World<B> {
         let start = Instant::now();
         let moved = self.place_bounds();
         stats.moved = moved.len();
+        let mut placed = std::mem::take(&mut self.scratch.placed);
+        placed.clear();
+        placed.resize(self.bodies.shapes.len().div_ceil(64), 0);
+        for &s in &moved {
+            placed[s as usize / 64] |= 1 << (s % 64);
+        }
         let t = Instant::now();
         stats.bounds_time = t - start;
         // This frame's lists go in last frame's buffers (see `Scratch`).
@@ -91,8 +97,9 @@ impl<B: Broadphase> World<B> {
         let mut events = std::mem::take(spare);
         events.clear();
         events.append(&mut self.orphaned);
+        let still = Still { placed: &placed, last: &self.events };
         let (touching, kept) =
-            narrow_phase(bodies, sorted, &mut self.pairs, states, runs, &mut events);
+            narrow_phase(bodies, still, sorted, &mut self.pairs, states, runs, &mut events);
         stats.touching = touching;
         // A kept pair touched at the last update: its contact is among that
         // update's events or its kept contacts.
@@ -103,6 +110,7 @@ impl<B: Broadphase> World<B> {
         let rested = rested.collect();
         self.rested = rested;
         *spare = std::mem::replace(&mut self.events, events);
+        scratch.placed = placed;
         self.scratch = scratch;
         stats.narrow_time = t4.elapsed();
         self.stats = stats;

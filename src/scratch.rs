@@ -32,4 +32,6 @@ pub(crate) struct Scratch {
     /// reads last frame's (the contacts of the pairs it keeps untested),
     /// then swaps the two.
     pub(crate) events: Vec<ContactEvent>,
+    /// The bodies placed this update, a bit a slot.
+    pub(crate) placed: Vec<u64>,
 }

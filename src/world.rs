@@ -195,8 +195,13 @@ impl<B: Broadphase> World<B> {
             if let Some(later) = ids.get(k + BODIES_AHEAD) {
                 prefetch(&b.poses[later.index as usize]);
             }
-            b.poses[id.index as usize] = pose;
-            b.mark_dirty(id.index);
+            // A pose handed over unchanged moves nothing: the body's bounds
+            // stay placed, and its pairs with bodies also unmoved keep their
+            // answers untested.
+            if b.poses[id.index as usize] != pose {
+                b.poses[id.index as usize] = pose;
+                b.mark_dirty(id.index);
+            }
         }
         Ok(())
     }
