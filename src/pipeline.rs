@@ -226,8 +226,8 @@ impl<B: Broadphase> World<B> {
 
     /// Pairs of overlapping leaves that the bodies' filters allow, each as
     /// `(lower slot, higher slot)`, in the broadphases' order, into `pairs`.
-    fn candidates(&self, pairs: &mut Vec<(u32, u32)>) {
-        self.moving.pairs_into(pairs);
+    fn candidates(&mut self, pairs: &mut Vec<(u32, u32)>) {
+        self.moving.cached_pairs_into(&mut self.moving_pairs, pairs);
         let within = pairs.len();
         self.moving.pairs_with(&self.resting, pairs);
         for (a, b) in &mut pairs[within..] {

@@ -55,6 +55,8 @@ pub struct World<B: Broadphase = Tree<Aabb>> {
     pub(crate) bodies: Bodies,
     /// Dynamic bodies, by slot.
     pub(crate) moving: B,
+    /// The moving broadphase's pairs, kept from update to update.
+    pub(crate) moving_pairs: B::Cache,
     /// Static and sleeping bodies, by slot: never tested against each other.
     pub(crate) resting: B,
     /// State of each pair that reached the narrow phase last frame, by

@@ -57,6 +57,9 @@ impl BruteForce {
 impl Broadphase for BruteForce {
     type Error = TreeError;
 
+    /// Nothing kept: every call tests every pair.
+    type Cache = ();
+
     const ID_LIMIT: u32 = Tree::<Aabb>::ID_LIMIT;
 
     fn len(&self) -> usize {
@@ -133,6 +136,10 @@ impl Broadphase for BruteForce {
                 }
             }
         }
+    }
+
+    fn cached_pairs_into(&mut self, _: &mut (), out: &mut Vec<(u32, u32)>) {
+        self.pairs_into(out);
     }
 
     fn pairs_with(&self, other: &Self, out: &mut Vec<(u32, u32)>) {

@@ -49,6 +49,10 @@ pub trait Broadphase: Default + std::fmt::Debug + Send + Sync {
     /// call changes nothing.
     type Error: std::error::Error + Send + Sync + 'static;
 
+    /// What the set keeps from one call of
+    /// [`cached_pairs_into`](Self::cached_pairs_into) to the next.
+    type Cache: Default + std::fmt::Debug + Send + Sync;
+
     /// Ids must be below this.
     const ID_LIMIT: u32;
 
@@ -82,6 +86,13 @@ pub trait Broadphase: Default + std::fmt::Debug + Send + Sync {
     /// Every pair of leaves whose boxes overlap, each once as `(a, b)` with
     /// `a < b`, into `out` (cleared first).
     fn pairs_into(&self, out: &mut Vec<(u32, u32)>);
+
+    /// Every pair that [`pairs_into`](Self::pairs_into) lists, in an order
+    /// of the set's own, with `cache` kept from the last call: the tree keeps
+    /// its pairs in a [`PairCache`](bvol_tree::PairCache) and, when few
+    /// leaves changed since, searches only around those. A cache serves one
+    /// set alone.
+    fn cached_pairs_into(&mut self, cache: &mut Self::Cache, out: &mut Vec<(u32, u32)>);
 
     /// Every pair `(id in self, id in other)` whose boxes overlap, appended
     /// to `out`. Leaves of one set are not tested against each other.

@@ -1,12 +1,14 @@
 //! The dynamic tree as a broadphase: each call is the tree's own.
 
-use bvol_tree::{Tree, TreeError};
+use bvol_tree::{PairCache, Tree, TreeError};
 use bvol_volumes::{Aabb, Ray};
 
 use super::Broadphase;
 
 impl Broadphase for Tree<Aabb> {
     type Error = TreeError;
+
+    type Cache = PairCache;
 
     const ID_LIMIT: u32 = Tree::<Aabb>::ID_LIMIT;
 
@@ -36,6 +38,12 @@ impl Broadphase for Tree<Aabb> {
 
     fn pairs_into(&self, out: &mut Vec<(u32, u32)>) {
         Tree::pairs_into(self, out);
+    }
+
+    fn cached_pairs_into(&mut self, cache: &mut PairCache, out: &mut Vec<(u32, u32)>) {
+        cache.update(self);
+        out.clear();
+        out.extend_from_slice(cache.pairs());
     }
 
     fn pairs_with(&self, other: &Self, out: &mut Vec<(u32, u32)>) {
