@@ -120,8 +120,9 @@ fn fit_refuses_coordinates_beyond_the_worlds_limit() {
 /// `bench world --shape` errors say where and what: the file with the part
 /// (a part's error once named only the part); a mesh too small to scale to a
 /// body (coordinates near 1e-44 were once said to be NaN or infinite); a
-/// 1 x 1 x 1e13 tetrahedron, a solid in exact arithmetic, is flat at f32
-/// precision, and the error says so.
+/// 1 x 1 x 1e13 tetrahedron, a solid in exact arithmetic, is a line at f32
+/// precision, and the error says so; a part on a line is named. A flat
+/// sheet is taken.
 #[test]
 fn bench_world_shape_errors_name_the_file_and_the_real_problem() {
     let tetra = |x: &str, z: &str| {
@@ -130,7 +131,7 @@ fn bench_world_shape_errors_name_the_file_and_the_real_problem() {
     let cases = [
         ("tiny.obj", tetra("1e-44", "1e-44"), "too small to scale to a body"),
         ("needle.obj", tetra("1", "1e13"), "at f32 precision the points span 1 dimension"),
-        ("flat.obj", "o sheet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n".into(), "part \"sheet\""),
+        ("line.obj", "o rod\nv 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n".into(), "part \"rod\""),
     ];
     for (name, obj, problem) in cases {
         let path = scratch(name, obj.as_bytes());
@@ -150,4 +151,9 @@ fn bench_world_shape_errors_name_the_file_and_the_real_problem() {
         assert!(err.contains(path.to_str().unwrap()) && err.contains(problem), "{err}");
         assert!(!err.contains("NaN or infinite"), "{err}");
     }
+    // A flat sheet is a shape: a thin slab.
+    let sheet = scratch("sheet.obj", b"o sheet\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n");
+    let out =
+        bvol(&["bench", "world", "--n", "10", "--frames", "1", "--shape", sheet.to_str().unwrap()]);
+    assert_eq!(out.status.code(), Some(0), "{}", String::from_utf8_lossy(&out.stderr));
 }
