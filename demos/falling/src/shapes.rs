@@ -83,7 +83,7 @@ pub struct ShapeLibrary {
 
 impl ShapeLibrary {
     /// Box, ball, capsule, tetrahedron, then one entry per OBJ file that
-    /// loads; a file that does not load (missing, broken, NaN, flat, ...)
+    /// loads; a file that does not load (missing, broken, NaN, a line, ...)
     /// becomes one line in `errors` naming the file and the problem, and
     /// loading goes on with the rest. Never panics.
     pub fn load(mesh_files: &[PathBuf], fit: FitOptions) -> ShapeLibrary {
@@ -414,15 +414,16 @@ mod tests {
     fn bad_files_are_reported_and_the_rest_load() {
         let missing = std::env::temp_dir().join("falling-no-such-dir/none.obj");
         let broken = temp_file("broken.obj", b"v 0 0 0\nv 1 0 nan\nv 0 1 0\nv 0 0 1\nf 1 2 3\n");
-        let flat = temp_file("flat.obj", b"v 0 0 0\nv 1 0 0\nv 0 1 0\nv 1 1 0\nf 1 2 3\nf 2 4 3\n");
+        // Points on a line are no solid (a flat sheet would be: a thin slab).
+        let line = temp_file("line.obj", b"v 0 0 0\nv 1 0 0\nv 2 0 0\nf 1 2 3\n");
         let binary = temp_file("binary.obj", &[0xff, 0xfe, 0x00, 0x81]);
-        let mut files = vec![missing.clone(), broken.clone(), flat.clone(), binary.clone()];
+        let mut files = vec![missing.clone(), broken.clone(), line.clone(), binary.clone()];
         files.extend(ShapeLibrary::default_mesh_files());
         let library = ShapeLibrary::load(&files, FitOptions::default());
         let good = ShapeLibrary::default_mesh_files().len();
         assert_eq!(library.entries.len(), 4 + good, "primitives and the good assets");
         assert_eq!(library.errors.len(), 4, "{:#?}", library.errors);
-        for (error, file) in library.errors.iter().zip([&missing, &broken, &flat, &binary]) {
+        for (error, file) in library.errors.iter().zip([&missing, &broken, &line, &binary]) {
             assert!(error.contains(&*file.to_string_lossy()), "{error} should name {file:?}");
         }
     }
