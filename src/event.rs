@@ -33,3 +33,20 @@ pub struct ContactEvent {
     /// The contact: `None` for an ended pair.
     pub contact: Option<Contact>,
 }
+
+impl ContactEvent {
+    /// The slots of its bodies: the key a frame's events are sorted by.
+    pub(crate) fn slots(&self) -> (u32, u32) {
+        (self.a.index, self.b.index)
+    }
+}
+
+/// The contact of bodies `a` and `b` (`a` in the lower slot) among `events`,
+/// sorted by slots and starting at the first whose slots are not below
+/// theirs: that of these very bodies, as a removed body's slot may be held
+/// by another since.
+pub(crate) fn contact_of(events: &[ContactEvent], a: BodyId, b: BodyId) -> Option<Contact> {
+    let key = (a.index, b.index);
+    let theirs = events.iter().take_while(|e| e.slots() == key);
+    theirs.filter(|e| e.a == a && e.b == b).find_map(|e| e.contact)
+}

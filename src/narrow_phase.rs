@@ -9,7 +9,7 @@ use rayon::prelude::*;
 
 use crate::BodyKind;
 use crate::bodies::Bodies;
-use crate::event::{ContactEvent, EventKind};
+use crate::event::{ContactEvent, EventKind, contact_of};
 
 /// How many pairs ahead the narrow phase asks for the second body's data.
 const AHEAD: usize = 8;
@@ -60,16 +60,10 @@ impl Still<'_> {
     /// The pair's contact at the last update, looked up from `*at` on
     /// (moved on, so a run's lookups take one pass over the events).
     fn last_contact(&self, bodies: &Bodies, (a, b): (u32, u32), at: &mut usize) -> Option<Contact> {
-        let key = |e: &ContactEvent| (e.a.index, e.b.index);
-        while self.last.get(*at).is_some_and(|e| key(e) < (a, b)) {
+        while self.last.get(*at).is_some_and(|e| e.slots() < (a, b)) {
             *at += 1;
         }
-        let (id_a, id_b) = (bodies.id_of(a), bodies.id_of(b));
-        self.last[*at..]
-            .iter()
-            .take_while(|e| key(e) == (a, b))
-            .filter(|e| e.a == id_a && e.b == id_b)
-            .find_map(|e| e.contact)
+        contact_of(&self.last[*at..], bodies.id_of(a), bodies.id_of(b))
     }
 }
 
@@ -117,7 +111,7 @@ pub(crate) fn narrow_phase(
         next.sort_by_key(|&(key, _)| key);
     }
     if orphans {
-        events.sort_by_key(|e| (e.a.index, e.b.index));
+        events.sort_by_key(ContactEvent::slots);
     }
     // Last frame's buffer, emptied by the merge, serves the next frame.
     *spare = std::mem::replace(states, next);
@@ -197,9 +191,8 @@ fn test_run(
     let mut ended = ended.iter().peekable();
     let mut touching = 0;
     // Where the run's pairs begin among last update's events.
-    let mut at = run
-        .first()
-        .map_or(0, |&(first, _)| still.last.partition_point(|e| (e.a.index, e.b.index) < first));
+    let mut at =
+        run.first().map_or(0, |&(first, _)| still.last.partition_point(|e| e.slots() < first));
     for (k, &mut ((a, b), ref mut state)) in run.iter_mut().enumerate() {
         if let Some(&(_, later)) = ahead.get(k + AHEAD) {
             prefetch(&bodies.poses[later as usize]);

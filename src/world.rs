@@ -14,7 +14,7 @@ use rayon::{ThreadPool, ThreadPoolBuilder};
 use crate::bodies::{BODIES_AHEAD, Bodies};
 use crate::broadphase::Broadphase;
 use crate::config::WorldConfig;
-use crate::event::ContactEvent;
+use crate::event::{ContactEvent, contact_of};
 use crate::limits::placeable;
 use crate::narrow_phase::PairStates;
 use crate::scratch::Scratch;
@@ -410,12 +410,8 @@ impl<B: Broadphase> World<B> {
     /// since) or its kept contacts.
     pub(crate) fn last_contact(&self, a: BodyId, b: BodyId) -> Option<Contact> {
         let key = (a.index, b.index);
-        let from = self.events.partition_point(|e| (e.a.index, e.b.index) < key);
-        let tested = self.events[from..]
-            .iter()
-            .take_while(|e| (e.a.index, e.b.index) == key)
-            .filter(|e| e.a == a && e.b == b)
-            .find_map(|e| e.contact);
+        let from = self.events.partition_point(|e| e.slots() < key);
+        let tested = contact_of(&self.events[from..], a, b);
         let rested = || {
             let k = self.rested.binary_search_by_key(&key, |&(k, _)| k).ok()?;
             Some(self.rested[k].1)

@@ -230,25 +230,8 @@ fn hull_contacts(c: &mut Criterion) {
     println!("cold pairs: {} ({touching} touching), {compared} verdicts compared", pairs.len());
     let (apart, touching): (Vec<&Posed>, Vec<&Posed>) =
         pairs.iter().partition(|p| !p.bvol(&mut WarmStart::default()).is_touching());
-    let mut group = c.benchmark_group("hull_contact_cold");
-    settings(&mut group);
-    for (name, set) in
-        [("all", pairs.iter().collect::<Vec<_>>()), ("apart", apart), ("touching", touching)]
-    {
-        group.throughput(Throughput::Elements(set.len() as u64));
-        group.bench_function(format!("bvol/{name}"), |bench| {
-            bench.iter(|| {
-                black_box(&set)
-                    .iter()
-                    .filter(|p| p.bvol(&mut WarmStart::default()).is_touching())
-                    .count()
-            })
-        });
-        group.bench_function(format!("parry3d/{name}"), |bench| {
-            bench.iter(|| black_box(&set).iter().filter(|p| p.parry().is_some()).count())
-        });
-    }
-    group.finish();
+    let sets = [("all", pairs.iter().collect()), ("apart", apart), ("touching", touching)];
+    time_cold(c, "hull_contact_cold", &sets);
 
     let paths = moving_pairs(&hulls, 64, 100);
     let steps = paths.iter().map(Vec::len).sum::<usize>();
@@ -264,6 +247,28 @@ fn hull_contacts(c: &mut Criterion) {
         paths.len()
     );
     time_paths(c, "hull_contact_moving", &paths, true);
+}
+
+/// Times each named set of pairs in group `group`, cold (a fresh warm start
+/// each call): bvol, then parry3d.
+fn time_cold(c: &mut Criterion, group: &str, sets: &[(&str, Vec<&Posed>)]) {
+    let mut group = c.benchmark_group(group);
+    settings(&mut group);
+    for (name, set) in sets {
+        group.throughput(Throughput::Elements(set.len() as u64));
+        group.bench_function(format!("bvol/{name}"), |bench| {
+            bench.iter(|| {
+                black_box(set)
+                    .iter()
+                    .filter(|p| p.bvol(&mut WarmStart::default()).is_touching())
+                    .count()
+            })
+        });
+        group.bench_function(format!("parry3d/{name}"), |bench| {
+            bench.iter(|| black_box(set).iter().filter(|p| p.parry().is_some()).count())
+        });
+    }
+    group.finish();
 }
 
 /// Times `paths` in group `name`: bvol with one warm start kept per path,
@@ -416,26 +421,12 @@ fn hull_contact_diet(c: &mut Criterion) {
     for kind in ["resting", "grazing", "near"] {
         sets.push((kind, resting.iter().filter(|r| r.0 == kind).map(|r| &r.1).collect()));
     }
-    let mut group = c.benchmark_group("hull_contact_diet");
-    settings(&mut group);
     for (name, set) in &sets {
         let touching =
             set.iter().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
         println!("{name}: {} pairs, {touching} touching", set.len());
-        group.throughput(Throughput::Elements(set.len() as u64));
-        group.bench_function(format!("bvol/{name}"), |bench| {
-            bench.iter(|| {
-                black_box(set)
-                    .iter()
-                    .filter(|p| p.bvol(&mut WarmStart::default()).is_touching())
-                    .count()
-            })
-        });
-        group.bench_function(format!("parry3d/{name}"), |bench| {
-            bench.iter(|| black_box(set).iter().filter(|p| p.parry().is_some()).count())
-        });
     }
-    group.finish();
+    time_cold(c, "hull_contact_diet", &sets);
 
     // The touching and nearly touching pairs moving slowly: each frame B
     // moves 1e-3 of the size along its own direction and turns 2e-3 rad.

@@ -50,8 +50,9 @@ const MASK_DEPTH: f64 = 0.25;
 /// start answered from the bodies' motion alone. Touching: the axis of least
 /// penetration, preferring faces over edges and A's faces over B's within a
 /// small tolerance (2e-5 of the shapes' size), so resting contacts do not
-/// flicker: the depth is at most that much more than the least penetration; a face contact clips the incident face of the other shape against
-/// the reference face (up to 4 points), an edge contact has one point between
+/// flicker: the depth is at most that much more than the least penetration.
+/// A face contact clips the incident face of the other shape against the
+/// reference face (up to 4 points), an edge contact has one point between
 /// the edges.
 ///
 /// `warm` carries the deciding feature and the last gap measured from call

@@ -1,5 +1,6 @@
 //! The change log: which ids were inserted, moved or removed since the last
-//! time a [`PairSet`](crate::PairSet) caught up, so it retests only those.
+//! time a [`PairCache`](crate::PairCache) or [`PairSet`](crate::PairSet)
+//! caught up, so it retests only those.
 
 /// Above this fraction of changed leaves, a pair list is recomputed by one
 /// tree self-search instead of querying each changed leaf: the queries'
@@ -56,7 +57,7 @@ impl Changes {
         !self.all && self.ids.len() as f32 <= FULL_FRACTION * len as f32
     }
 
-    /// The ids marked one by one (empty when [`Changes::all`]).
+    /// The ids marked one by one (empty when all are marked).
     pub(crate) fn ids(&self) -> &[u32] {
         &self.ids
     }

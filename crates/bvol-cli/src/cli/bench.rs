@@ -11,10 +11,10 @@ use bvol::volumes::Aabb;
 use bvol_cli::digest::PairDigest;
 use bvol_cli::scenes::{Scene, SceneKind};
 use bvol_cli::trace::{BoxTrace, TraceWriter};
-
-use super::breakdown::Breakdown;
 use clap::Args;
 use indicatif::{ProgressBar, ProgressStyle};
+
+use super::breakdown::Breakdown;
 
 /// Where the frames come from.
 #[derive(Args, Debug)]

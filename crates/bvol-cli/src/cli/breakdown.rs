@@ -4,7 +4,8 @@
 
 use bvol::tree::{CacheUpdate, UpdateStats};
 
-/// What a frame's update did, from its [`UpdateStats`].
+/// What a frame's update did, from its [`UpdateStats`]; its value indexes
+/// [`Breakdown`]'s totals, in the order of [`FrameKind::ALL`].
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 enum FrameKind {
     /// Moved leaves updated one by one (few moved).
@@ -76,8 +77,7 @@ impl Breakdown {
         found: Option<CacheUpdate>,
         pairs: usize,
     ) {
-        let kind = FrameKind::of(update);
-        let t = &mut self.totals[FrameKind::ALL.iter().position(|&k| k == kind).unwrap_or(0)];
+        let t = &mut self.totals[FrameKind::of(update) as usize];
         t.frames += 1;
         t.moved += update.moved as u64;
         t.update_ms += update_ms;
