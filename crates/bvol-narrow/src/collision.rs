@@ -10,7 +10,9 @@ use crate::manifold::{MAX_POINTS, Manifold};
 pub struct ContactPoint {
     /// World position, midway between the two surfaces.
     pub position: Vec3,
-    /// Penetration of this point along the contact normal, `>= 0`.
+    /// Penetration of this point along the contact normal: `>= 0` where
+    /// the bodies touch; where they are apart (a contact within a margin,
+    /// [`contact_within`](crate::contact_within)), minus their distance.
     pub depth: f32,
 }
 
@@ -19,8 +21,10 @@ pub struct ContactPoint {
 pub struct Contact {
     /// Unit world direction pointing from A to B.
     pub normal: Vec3,
-    /// `>= 0`: the distance B must move along `normal` (or A against it) to
-    /// separate them.
+    /// `>= 0` where they touch: the distance B must move along `normal` (or
+    /// A against it) to separate them. Negative where they are apart, in a
+    /// contact within a margin ([`contact_within`](crate::contact_within)):
+    /// minus their distance, B as far from touching along `normal`.
     pub depth: f32,
     points: [ContactPoint; MAX_POINTS],
     count: u8,
@@ -38,6 +42,12 @@ impl Contact {
     /// The contact points: one to four.
     pub fn points(&self) -> &[ContactPoint] {
         &self.points[..self.count as usize]
+    }
+
+    /// Whether the bodies touch (overlap or meet: `depth >= 0`), rather
+    /// than lie apart within a margin.
+    pub fn is_touching(&self) -> bool {
+        self.depth >= 0.0
     }
 }
 

@@ -113,6 +113,9 @@ pub enum NarrowError {
         /// The body whose pose is bad.
         body: Body,
     },
+    /// A margin ([`contact_within`](crate::contact_within)) that is negative
+    /// or not finite.
+    BadMargin,
 }
 
 impl NarrowError {
@@ -128,6 +131,7 @@ impl NarrowError {
             NarrowError::PoseOutOfRange { body } => {
                 NarrowError::PoseOutOfRange { body: body.other() }
             }
+            NarrowError::BadMargin => NarrowError::BadMargin,
         }
     }
 }
@@ -146,6 +150,9 @@ impl fmt::Display for NarrowError {
                 "the position of body {body} has a coordinate beyond ±{:e}",
                 bvol_volumes::MAX_COORDINATE
             ),
+            NarrowError::BadMargin => {
+                write!(f, "the margin must be finite and not negative")
+            }
         }
     }
 }
