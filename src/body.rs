@@ -148,6 +148,12 @@ pub enum WorldError {
         /// The number of threads asked for.
         threads: usize,
     },
+    /// A [`WorldConfig`](crate::WorldConfig) asked for a margin that is
+    /// negative, not finite or beyond [`MAX_COORDINATE`].
+    BadMargin {
+        /// The margin asked for.
+        margin: f32,
+    },
 }
 
 impl fmt::Display for WorldError {
@@ -171,6 +177,10 @@ impl fmt::Display for WorldError {
                 "WorldConfig::threads: a pool of {threads} threads could not be started \
                  (from 1 to {} are allowed)",
                 crate::WorldConfig::MAX_THREADS
+            ),
+            WorldError::BadMargin { margin } => write!(
+                f,
+                "WorldConfig::margin: {margin} is not a distance from 0 to {MAX_COORDINATE:e}"
             ),
         }
     }

@@ -4,14 +4,15 @@ use bvol_narrow::Contact;
 
 use crate::BodyId;
 
-/// What happened to a touching pair.
+/// What happened to a pair in contact: touching, or, in a world with a
+/// [`margin`](crate::WorldConfig::margin), apart by at most the margin.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum EventKind {
-    /// It touches now and did not last frame.
+    /// It is in contact now and was not last frame.
     Began,
-    /// It touched last frame and still does.
+    /// It was in contact last frame and still is.
     Persisting,
-    /// It touched last frame and does not now (or a body was removed).
+    /// It was in contact last frame and is not now (or a body was removed).
     Ended,
 }
 

@@ -3,7 +3,7 @@
 //! written as it is tested: runs of pairs on rayon tasks, their lists joined
 //! in order, so the events are the same on any number of threads.
 
-use bvol_narrow::{Contact, WarmStart, collide_parts};
+use bvol_narrow::{Contact, WarmStart, contact_within};
 use bvol_volumes::prefetch;
 use rayon::prelude::*;
 
@@ -20,6 +20,23 @@ const NARROW_CHUNK: usize = 32;
 /// stealing to even out, few enough that joining their events costs little.
 const RUNS_A_THREAD: usize = 16;
 
+/// How many pairs of a frame's narrow phase are in contact, of each kind.
+#[derive(Clone, Copy, Debug, Default)]
+pub(crate) struct Counts {
+    /// Touching.
+    pub(crate) touching: usize,
+    /// Apart within the margin.
+    pub(crate) near: usize,
+}
+
+impl std::ops::Add for Counts {
+    type Output = Counts;
+
+    fn add(self, other: Counts) -> Counts {
+        Counts { touching: self.touching + other.touching, near: self.near + other.near }
+    }
+}
+
 /// Pairs' states by `(lower slot, higher slot)`, sorted by it.
 pub(crate) type PairStates = Vec<((u32, u32), PairState)>;
 
@@ -33,8 +50,8 @@ pub(crate) struct PairState {
     /// slice, two words less than a `Vec` (every pair's state is moved each
     /// frame, and most have none).
     pub(crate) more: Box<[WarmStart]>,
-    /// Whether it touched.
-    pub(crate) touching: bool,
+    /// Whether it was in contact: touching, or apart within the margin.
+    pub(crate) in_contact: bool,
     /// Whether it was tested at an earlier update (a fresh state was not).
     pub(crate) tested: bool,
 }
@@ -70,8 +87,9 @@ impl Still<'_> {
 /// The narrow phase of one frame: each of `pairs` (sorted by slot) tested,
 /// with its warm starts from last frame, and the events written after those
 /// already in `events` (the contacts of removed bodies, sorted in with the
-/// rest). Returns how many touch, and the touching pairs it kept untested
-/// (both bodies resting), sorted.
+/// rest); a pair is in contact when it touches or is apart within `margin`.
+/// Returns how many are in contact, and the pairs in contact it kept
+/// untested (both bodies resting), sorted.
 ///
 /// `states` holds last frame's pair states, sorted as `pairs` are, and gets
 /// this frame's: one merge pass moves each pair's state into the spare
@@ -80,15 +98,16 @@ impl Still<'_> {
 pub(crate) fn narrow_phase(
     bodies: &Bodies,
     still: Still,
+    margin: f32,
     pairs: &[(u32, u32)],
     states: &mut PairStates,
     spare: &mut PairStates,
     runs: &mut Vec<Vec<ContactEvent>>,
     events: &mut Vec<ContactEvent>,
-) -> (usize, Vec<(u32, u32)>) {
+) -> (Counts, Vec<(u32, u32)>) {
     let mut next = std::mem::take(spare);
     let left = carry_over(states, pairs, &mut next);
-    // Pairs no longer candidates that touched have ended, unless both
+    // Pairs no longer candidates that were in contact have ended, unless both
     // bodies rest: a pile that falls asleep keeps its contacts, unchanged
     // and unreported, until one of them moves again.
     let kinds = &bodies.kinds;
@@ -96,13 +115,13 @@ pub(crate) fn narrow_phase(
         kinds[a as usize] != BodyKind::Dynamic && kinds[b as usize] != BodyKind::Dynamic
     };
     let (kept, ended): (PairStates, PairStates) =
-        left.into_iter().filter(|(_, state)| state.touching).partition(|&(key, _)| resting(key));
+        left.into_iter().filter(|(_, state)| state.in_contact).partition(|&(key, _)| resting(key));
     let ended: Vec<(u32, u32)> = ended.into_iter().map(|(key, _)| key).collect();
     let orphans = !events.is_empty();
-    let touching = if rayon::current_num_threads() == 1 || next.is_empty() {
-        test_run(bodies, still, &mut next, pairs, &ended, events)
+    let counts = if rayon::current_num_threads() == 1 || next.is_empty() {
+        test_run(bodies, still, margin, &mut next, pairs, &ended, events)
     } else {
-        test_in_runs(bodies, still, &mut next, pairs, &ended, runs, events)
+        test_in_runs(bodies, still, margin, &mut next, pairs, &ended, runs, events)
     };
     let kept_keys = kept.iter().map(|&(key, _)| key).collect();
     if !kept.is_empty() {
@@ -115,7 +134,7 @@ pub(crate) fn narrow_phase(
     }
     // Last frame's buffer, emptied by the merge, serves the next frame.
     *spare = std::mem::replace(states, next);
-    (touching, kept_keys)
+    (counts, kept_keys)
 }
 
 /// Last frame's pair states (sorted by key) matched with this frame's
@@ -144,16 +163,17 @@ fn carry_over(old: &mut PairStates, pairs: &[(u32, u32)], next: &mut PairStates)
 /// lists (in `runs`, buffers kept from frame to frame) are joined in
 /// order, so they are the same on any number of threads. (One pass after
 /// the tests, over their contacts gathered in a list, took a tenth of the
-/// stage on 100 000 cubes.) Returns how many touch.
+/// stage on 100 000 cubes.) Returns how many are in contact.
 fn test_in_runs(
     bodies: &Bodies,
     still: Still,
+    margin: f32,
     states: &mut [((u32, u32), PairState)],
     pairs: &[(u32, u32)],
     ended: &[(u32, u32)],
     runs: &mut Vec<Vec<ContactEvent>>,
     events: &mut Vec<ContactEvent>,
-) -> usize {
+) -> Counts {
     let run = states.len().div_ceil(RUNS_A_THREAD * rayon::current_num_threads());
     let run = run.max(NARROW_CHUNK);
     let firsts: Vec<(u32, u32)> = states.iter().step_by(run).map(|&(key, _)| key).collect();
@@ -161,35 +181,36 @@ fn test_in_runs(
     // The ended keys below run `r`'s first.
     let below =
         |r: usize| firsts.get(r).map_or(ended.len(), |&k| ended.partition_point(|&e| e < k));
-    let touching = states
+    let counts = states
         .par_chunks_mut(run)
         .zip(runs.par_iter_mut())
         .enumerate()
         .map(|(r, (chunk, out))| {
             let gone = &ended[if r == 0 { 0 } else { below(r) }..below(r + 1)];
             out.clear();
-            test_run(bodies, still, chunk, &pairs[r * run..], gone, out)
+            test_run(bodies, still, margin, chunk, &pairs[r * run..], gone, out)
         })
-        .sum();
+        .reduce(Counts::default, |x, y| x + y);
     runs.iter().for_each(|out| events.extend_from_slice(out));
-    touching
+    counts
 }
 
 /// Tests a run of sorted pairs, updating their states, and appends their
 /// events to `events`, with the `ended` pairs (sorted, among the run's
-/// keys) merged in; returns how many touch. `ahead` is the pairs from the
-/// run's first on: it asks for a later pair's second body [`AHEAD`] pairs
-/// early.
+/// keys) merged in; returns how many are in contact. `ahead` is the pairs
+/// from the run's first on: it asks for a later pair's second body
+/// [`AHEAD`] pairs early.
 fn test_run(
     bodies: &Bodies,
     still: Still,
+    margin: f32,
     run: &mut [((u32, u32), PairState)],
     ahead: &[(u32, u32)],
     ended: &[(u32, u32)],
     events: &mut Vec<ContactEvent>,
-) -> usize {
+) -> Counts {
     let mut ended = ended.iter().peekable();
-    let mut touching = 0;
+    let mut counts = Counts::default();
     // Where the run's pairs begin among last update's events.
     let mut at =
         run.first().map_or(0, |&(first, _)| still.last.partition_point(|e| e.slots() < first));
@@ -200,16 +221,20 @@ fn test_run(
             prefetch(&bodies.user_data[later as usize]);
         }
         let kept = match state.tested && still.unmoved((a, b)) {
-            true if state.touching => still.last_contact(bodies, (a, b), &mut at).map(Some),
+            true if state.in_contact => still.last_contact(bodies, (a, b), &mut at).map(Some),
             true => Some(None),
             false => None,
         };
-        let contact = kept.unwrap_or_else(|| collide(bodies, a, b, state));
+        let contact = kept.unwrap_or_else(|| collide(bodies, a, b, margin, state));
         state.tested = true;
-        let was = state.touching;
-        state.touching = contact.is_some();
-        touching += usize::from(state.touching);
-        let kind = match (was, state.touching) {
+        let was = state.in_contact;
+        state.in_contact = contact.is_some();
+        match contact {
+            Some(c) if c.is_touching() => counts.touching += 1,
+            Some(_) => counts.near += 1,
+            None => {}
+        }
+        let kind = match (was, state.in_contact) {
             (false, true) => EventKind::Began,
             (true, true) => EventKind::Persisting,
             (true, false) => EventKind::Ended,
@@ -221,12 +246,13 @@ fn test_run(
         events.push(bodies.event(kind, a, b, contact));
     }
     events.extend(ended.map(|&(a, b)| bodies.ended(a, b)));
-    touching
+    counts
 }
 
-/// How bodies `a` and `b` touch, if they do: the deepest contact over
-/// their pairs of convex parts, the normal from `a` to `b`.
-fn collide(bodies: &Bodies, a: u32, b: u32, state: &mut PairState) -> Option<Contact> {
+/// How bodies `a` and `b` touch, or how near they are when apart within
+/// `margin`: the deepest contact over their pairs of convex parts (the
+/// nearest, when none touches), the normal from `a` to `b`.
+fn collide(bodies: &Bodies, a: u32, b: u32, margin: f32, state: &mut PairState) -> Option<Contact> {
     let (a, b) = (a as usize, b as usize);
     let (shape_a, shape_b) = (bodies.shapes[a].as_ref()?, bodies.shapes[b].as_ref()?);
     let (parts_a, parts_b) = (shape_a.parts(), shape_b.parts());
@@ -241,9 +267,10 @@ fn collide(bodies: &Bodies, a: u32, b: u32, state: &mut PairState) -> Option<Con
                 0 => &mut state.warm,
                 k => &mut state.more[k - 1],
             };
-            // Poses were checked when set, so the tests cannot fail.
-            let found = collide_parts(pa, &bodies.poses[a], pb, &bodies.poses[b], cache);
-            let contact = found.ok().and_then(|c| c.contact().copied());
+            // Poses were checked when set and the margin when the world was
+            // made, so the tests cannot fail.
+            let found = contact_within(pa, &bodies.poses[a], pb, &bodies.poses[b], margin, cache);
+            let contact = found.ok().flatten();
             if let Some(c) = contact.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
                 deepest = Some(c);
             }

@@ -98,9 +98,10 @@ impl<B: Broadphase> World<B> {
         events.clear();
         events.append(&mut self.orphaned);
         let still = Still { placed: &placed, last: &self.events };
-        let (touching, kept) =
-            narrow_phase(bodies, still, sorted, &mut self.pairs, states, runs, &mut events);
-        stats.touching = touching;
+        let margin = self.config.margin;
+        let (counts, kept) =
+            narrow_phase(bodies, still, margin, sorted, &mut self.pairs, states, runs, &mut events);
+        (stats.touching, stats.near) = (counts.touching, counts.near);
         // A kept pair touched at the last update: its contact is among that
         // update's events or its kept contacts.
         let rested = kept.into_iter().filter_map(|(a, b)| {
@@ -122,6 +123,9 @@ impl<B: Broadphase> World<B> {
     /// at a time on SIMD lanes (reading a flag a slot costs less than
     /// gathering the moved ones by slot); when few did, a loop over those.
     fn place_bounds(&mut self) -> Vec<u32> {
+        // Half the margin a body: bodies within it of each other overlap.
+        let pad = self.config.margin * 0.5;
+        let grown = |w: WorldBounds| if pad > 0.0 { w.grown(pad) } else { w };
         let b = &mut self.bodies;
         let mut dirty = std::mem::take(&mut b.dirty);
         if dirty.len() * DENSE_PLACE >= b.shapes.len() {
@@ -150,6 +154,7 @@ impl<B: Broadphase> World<B> {
                     let (leaves, flags) = (&mut leaves[start..end], &mut flags[start..end]);
                     let (shapes, poses) = (&shapes[start..end], &poses[start..end]);
                     let mut store = |k: usize, w: WorldBounds| {
+                        let w = grown(w);
                         (spheres[k], obbs[k], leaves[k]) = (w.sphere, w.obb, w.aabb);
                     };
                     if let ([true, true, true, true], [Some(s0), Some(s1), Some(s2), Some(s3)]) =
@@ -173,7 +178,7 @@ impl<B: Broadphase> World<B> {
                 let i = s as usize;
                 b.is_dirty[i] = false;
                 if let Some(shape) = &b.shapes[i] {
-                    let w = shape.bounds().at(&b.poses[i]);
+                    let w = grown(shape.bounds().at(&b.poses[i]));
                     (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
                 }
             }

@@ -17,6 +17,9 @@ pub struct FrameStats {
     pub after_obbs: usize,
     /// Of those, pairs whose shapes touch.
     pub touching: usize,
+    /// Of those, pairs whose shapes are apart within the world's
+    /// [`margin`](crate::WorldConfig::margin): 0 without one.
+    pub near: usize,
     /// Time to place the world bounds of the bodies that moved.
     pub bounds_time: Duration,
     /// Time of the broadphase: its upkeep and the pair search.

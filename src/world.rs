@@ -15,7 +15,7 @@ use crate::bodies::{BODIES_AHEAD, Bodies};
 use crate::broadphase::Broadphase;
 use crate::config::WorldConfig;
 use crate::event::{ContactEvent, contact_of};
-use crate::limits::placeable;
+use crate::limits::{MAX_COORDINATE, placeable};
 use crate::narrow_phase::PairStates;
 use crate::scratch::Scratch;
 use crate::stats::FrameStats;
@@ -46,7 +46,10 @@ use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
 /// Two bodies touch when their shapes overlap or meet: touching exactly, a
 /// contact of depth 0, counts (rapier, for one, does not count it).
 /// [`contacts`](World::contacts) lists the pairs touching at the last
-/// update and [`contact`](World::contact) answers for one pair.
+/// update and [`contact`](World::contact) answers for one pair. A world made
+/// with a [`margin`](WorldConfig::margin) counts pairs apart by at most the
+/// margin as in contact too: their events, listed contacts and answers
+/// have negative depths.
 ///
 /// Its broadphase is the dynamic tree unless another is named:
 /// `World::<BruteForce>::default()` tests every pair (see [`Broadphase`]).
@@ -87,6 +90,10 @@ impl World {
     /// An empty world set up by `config`, its broadphase the dynamic tree;
     /// its own thread pool, if `config` names one, started now.
     pub fn with_config(config: WorldConfig) -> Result<Self, WorldError> {
+        let margin = config.margin;
+        if !(0.0..=MAX_COORDINATE).contains(&margin) {
+            return Err(WorldError::BadMargin { margin });
+        }
         let pool = match config.threads {
             None => None,
             Some(threads @ 1..=WorldConfig::MAX_THREADS) => {
@@ -152,7 +159,7 @@ impl<B: Broadphase> World<B> {
         let mut orphaned = Vec::new();
         self.pairs.retain(|&((a, b), ref state)| {
             let gone = a == id.index || b == id.index;
-            if gone && state.touching {
+            if gone && state.in_contact {
                 orphaned.push((a, b));
             }
             !gone
@@ -247,7 +254,9 @@ impl<B: Broadphase> World<B> {
         Ok(self.bodies.shapes[i].as_ref().expect("slot checked"))
     }
 
-    /// A body's bounding sphere in the world, as of the last update.
+    /// A body's bounding sphere in the world, as of the last update (grown
+    /// by half the world's [`margin`](WorldConfig::margin), as its OBB and
+    /// box are).
     pub fn world_sphere(&self, id: BodyId) -> Result<Sphere, WorldError> {
         let i = self.slot(id)?;
         Ok(self.bodies.spheres[i])
@@ -350,7 +359,8 @@ impl<B: Broadphase> World<B> {
     /// began or persist) and those kept untested because both bodies rest,
     /// with the contact they had when last tested. A pair that lost a body
     /// since is left out. Touching includes touching exactly: a contact of
-    /// depth 0.
+    /// depth 0. With a [`margin`](WorldConfig::margin), the pairs apart by
+    /// at most the margin are listed too, with their negative depths.
     ///
     /// ```
     /// use std::sync::Arc;
@@ -389,7 +399,7 @@ impl<B: Broadphase> World<B> {
     /// How bodies `a` and `b` touched at the last update (as
     /// [`contacts`](Self::contacts) has it), the normal pointing from `a` to
     /// `b` whichever of them has the lower slot; `None` if they did not
-    /// touch.
+    /// touch (or, with a [`margin`](WorldConfig::margin), come within it).
     pub fn contact(&self, a: BodyId, b: BodyId) -> Result<Option<Contact>, WorldError> {
         self.slot(a)?;
         self.slot(b)?;

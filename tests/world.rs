@@ -8,7 +8,7 @@ use std::collections::{BTreeMap, BTreeSet};
 use std::path::PathBuf;
 use std::sync::Arc;
 
-use bvol::narrow::{Contact, WarmStart, collide_parts};
+use bvol::narrow::{Contact, WarmStart, collide_parts, contact_within};
 use bvol::volumes::Aabb;
 use bvol::volumes::{Pose, Ray};
 use bvol::{
@@ -95,7 +95,7 @@ fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
                     (lo, hi) = (lo.min(w), hi.max(w));
                 }
             }
-            let pad = 1e-4 * (hi - lo).max_element();
+            let pad = 1e-4 * (hi - lo).max_element() + world.config().margin;
             (lo - pad, hi + pad)
         })
         .collect();
@@ -119,14 +119,16 @@ fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
     touching
 }
 
-/// Whether two bodies touch, part by part.
+/// Whether two bodies are in contact, part by part: touching, or apart
+/// within the world's margin.
 fn touch(world: &World, a: BodyId, b: BodyId) -> bool {
     let (pa, pb) = (world.pose(a).unwrap(), world.pose(b).unwrap());
     let (sa, sb) = (world.shape(a).unwrap(), world.shape(b).unwrap());
+    let margin = world.config().margin;
     sa.parts().iter().any(|x| {
         sb.parts().iter().any(|y| {
-            let c = collide_parts(x, &pa, y, &pb, &mut WarmStart::default());
-            c.unwrap().is_touching()
+            let c = contact_within(x, &pa, y, &pb, margin, &mut WarmStart::default());
+            c.unwrap().is_some()
         })
     })
 }
@@ -243,22 +245,36 @@ fn unchanged_poses_keep_their_contacts() {
     assert_ne!(poses, ids.iter().map(|&id| world.pose(id).unwrap()).collect::<Vec<_>>());
 }
 
+/// Every frame the pairs in contact (touching, and with a margin those
+/// apart within it) are those of an all-pairs test, and the events their
+/// differences: with no margin, and with one of a tenth of the bodies'
+/// size, where the bodies' grown bounds must let every near pair through.
 #[test]
 fn touching_pairs_equal_brute_force_every_frame() {
-    for (n, frames, seed) in [(200, 12, 1), (1000, 6, 2), (5000, 3, 3)] {
-        let (mut world, ids, mut rng) = random_world(n, seed);
+    let runs = [
+        (200, 12, 1, 0.0),
+        (1000, 6, 2, 0.0),
+        (5000, 3, 3, 0.0),
+        (200, 12, 5, 0.1),
+        (1000, 6, 6, 0.1),
+    ];
+    for (n, frames, seed, margin) in runs {
+        let config = WorldConfig::default().with_margin(margin);
+        let (mut world, ids, mut rng) = random_world_with(n, seed, config);
         let mut before = BTreeSet::new();
-        let mut total = 0;
+        let (mut total, mut near) = (0, 0);
         for f in 0..frames {
             let stats = *world.update();
             let now = touching_of(&world);
-            assert_eq!(now, brute_force(&world), "n = {n}");
+            assert_eq!(now, brute_force(&world), "n = {n}, margin {margin}");
             // Each stage passes on a subset of the one before.
             assert!(stats.candidates >= stats.after_spheres);
             assert!(stats.after_spheres >= stats.after_obbs);
-            assert!(stats.after_obbs >= stats.touching);
-            assert_eq!(stats.touching, now.len());
-            // Events are the difference of the touching sets.
+            assert!(stats.after_obbs >= stats.touching + stats.near);
+            assert_eq!(stats.touching + stats.near, now.len());
+            let apart = world.contacts().filter(|(_, _, c)| !c.is_touching()).count();
+            assert_eq!(stats.near, apart);
+            // Events are the difference of the sets in contact.
             let kinds = |k: EventKind| -> BTreeSet<(u32, u32)> {
                 let events = world.events().iter().filter(|e| e.kind == k);
                 events.map(|e| (e.a.index(), e.b.index())).collect()
@@ -270,12 +286,14 @@ fn touching_pairs_equal_brute_force_every_frame() {
             let keys: Vec<_> = world.events().iter().map(|e| (e.a.index(), e.b.index())).collect();
             assert!(keys.is_sorted_by(|x, y| x < y), "n = {n}: events out of order");
             total += now.len();
+            near += stats.near;
             before = now;
             // Most bodies moving, then few: the moving tree reads the slot
             // array, or is handed the list of those that moved.
             step_some(&mut world, &ids, &mut rng, [1.0, 0.05][f % 2]);
         }
         assert!(total > n / 4, "n = {n}: too few contacts ({total}) to prove much");
+        assert_eq!(near > total / 20, margin > 0.0, "n = {n}: {near} near of {total}");
     }
 }
 
@@ -405,6 +423,21 @@ fn bad_thread_counts_are_typed_errors() {
     for threads in [0, WorldConfig::MAX_THREADS + 1, usize::MAX] {
         let got = World::with_config(WorldConfig::default().with_threads(threads));
         assert_eq!(got.err(), Some(WorldError::BadThreads { threads }));
+    }
+}
+
+#[test]
+fn bad_margins_are_typed_errors() {
+    assert_eq!(WorldConfig::default().margin, 0.0);
+    for margin in [0.0, 1e-6, bvol::MAX_COORDINATE] {
+        let config = WorldConfig::default().with_margin(margin);
+        assert_eq!(World::with_config(config).unwrap().config().margin, margin);
+    }
+    for margin in [-1e-6, f32::NAN, f32::INFINITY, bvol::MAX_COORDINATE * 2.0] {
+        let got = World::with_config(WorldConfig::default().with_margin(margin));
+        let message = got.as_ref().err().map(ToString::to_string).unwrap_or_default();
+        assert!(matches!(got, Err(WorldError::BadMargin { .. })), "{margin}");
+        assert!(message.contains("WorldConfig::margin"), "{message}");
     }
 }
 
@@ -867,8 +900,9 @@ proptest! {
     /// kind changes, single moves and moves of all at once, on a world
     /// small and dense enough that most bodies touch, scaled to sizes of
     /// 1e-3, 1 and 1e3 and placed at the origin or 1e4 from it (where f32
-    /// steps, about 1e-3, are coarser than the shapes of size 1e-3): after
-    /// every update the events are exactly those of an all-pairs hull test
+    /// steps, about 1e-3, are coarser than the shapes of size 1e-3), with
+    /// no margin or one of 5% of the size: after every update the events
+    /// are exactly those of an all-pairs hull test (within the margin)
     /// against the pairs touching at the update before (resting pairs kept
     /// untested, removed bodies' pairs ended, reused slots told apart by
     /// their handles), in slot order, with a contact on each but the ended;
@@ -880,12 +914,13 @@ proptest! {
         ops in prop::collection::vec(any_op(), 1..40),
         size in prop::sample::select(vec![1e-3f32, 1.0, 1e3]),
         far in prop::sample::select(vec![0.0f32, 1e4]),
+        margin in prop::sample::select(vec![0.0f32, 0.05]),
     ) {
         // The whole world scaled by `size`, and moved `far` from the origin.
         let shapes = shapes_of_size(size);
         let at = |p: Vec3| p * size + Vec3::splat(far);
         let place = |p: Pose| Pose::new(at(p.position), p.rotation);
-        let mut world = World::new();
+        let mut world = World::with_config(WorldConfig::default().with_margin(margin * size)).unwrap();
         let mut model = Model::default();
         // Each body's user data, distinct, kept after it is removed.
         let mut users = BTreeMap::new();

@@ -48,11 +48,12 @@ pub(crate) struct PyWorld {
 #[pymethods]
 impl PyWorld {
     /// A world with no bodies; `threads` is the number of threads `update`
-    /// runs on (by default, one per core).
+    /// runs on (by default, one per core); bodies apart by at most `margin`
+    /// are in contact too, with negative depths (`WorldConfig::margin`).
     #[new]
-    #[pyo3(signature = (threads = None))]
-    fn new(threads: Option<usize>) -> PyResult<Self> {
-        let config = WorldConfig::default();
+    #[pyo3(signature = (threads = None, margin = 0.0))]
+    fn new(threads: Option<usize>, margin: f32) -> PyResult<Self> {
+        let config = WorldConfig::default().with_margin(margin);
         let config = threads.map_or(config, |n| config.with_threads(n));
         let world = World::with_config(config).map_err(world_error)?;
         Ok(PyWorld { world })
@@ -192,7 +193,8 @@ impl PyWorld {
 
     /// Runs one frame and returns what each stage let through and how long
     /// it took: a dict of counts ("moved", "candidates", "after_spheres",
-    /// "after_obbs", "touching") and times in seconds ("bounds_time",
+    /// "after_obbs", "touching", "near": apart within the margin) and times
+    /// in seconds ("bounds_time",
     /// "broadphase_time", "spheres_time", "obbs_time", "narrow_time",
     /// "total_time").
     fn update<'py>(&mut self, py: Python<'py>) -> PyResult<Bound<'py, PyDict>> {
@@ -201,7 +203,8 @@ impl PyWorld {
         stats_dict(py, &stats)
     }
 
-    /// The pairs touching at the last update, an (M, 2) uint64 array of ids,
+    /// The pairs touching (or within the margin) at the last update, an
+    /// (M, 2) uint64 array of ids,
     /// the lower slot first, in the order of `events`.
     fn pairs<'py>(&self, py: Python<'py>) -> Bound<'py, PyArray2<u64>> {
         let pairs: Vec<[u64; 2]> =
@@ -365,6 +368,7 @@ fn stats_dict<'py>(py: Python<'py>, s: &FrameStats) -> PyResult<Bound<'py, PyDic
         ("after_spheres", s.after_spheres),
         ("after_obbs", s.after_obbs),
         ("touching", s.touching),
+        ("near", s.near),
     ] {
         dict.set_item(name, count)?;
     }

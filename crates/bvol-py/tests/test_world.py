@@ -119,6 +119,26 @@ def test_events_follow_the_pairs_frame_to_frame():
         world.set_poses(ids, positions)
 
 
+def test_balls_within_the_margin_are_in_contact_with_their_distance():
+    rng = np.random.default_rng(22)
+    positions, radii = ball_scene(rng)
+    margin = 0.05
+    world = bvol.World(margin=margin)
+    ids = add_balls(world, positions, radii)
+    stats = world.update()
+    got = as_index_pairs(world, ids)
+    assert stats["touching"] + stats["near"] == len(got)
+    i, j, gap = ball_gaps(positions, radii)
+    assert_pairs_match(got, i, j, gap - margin, band=1e-5)
+    near = [(a, b, g) for a, b, g in zip(i, j, gap) if 1e-5 < g <= margin - 1e-5]
+    assert stats["near"] >= len(near) > 20
+    for a, b, g in near:
+        contact = world.contact(int(ids[a]), int(ids[b]))
+        assert np.isclose(contact["depth"], -g, atol=1e-5)
+    with pytest.raises(ValueError, match="margin"):
+        bvol.World(margin=-1.0)
+
+
 def test_contacts_of_two_balls_are_the_exact_ones():
     world = bvol.World()
     a = world.add_body(primitive=("sphere", 1.0), pose=((0, 0, 0), (0, 0, 0, 1)))

@@ -54,6 +54,44 @@ pub struct WorldBounds {
     pub aabb: Aabb,
 }
 
+impl WorldBounds {
+    /// The bounds grown by `pad` (finite, `>= 0`) all round, rounded
+    /// outward: each holds every point within `pad` of what it held. A
+    /// world with a margin grows each body's bounds by half of it, so that
+    /// bodies within the margin of each other have bounds that overlap.
+    ///
+    /// ```
+    /// use bvol_volumes::{Aabb, Obb, Sphere, WorldBounds};
+    /// use glam::{Mat3, Vec3};
+    /// let tight = WorldBounds {
+    ///     sphere: Sphere::new(Vec3::ZERO, 1.0),
+    ///     obb: Obb { center: Vec3::ZERO, axes: Mat3::IDENTITY, half_extents: Vec3::ONE },
+    ///     aabb: Aabb::new(Vec3::splat(-1.0), Vec3::ONE),
+    /// };
+    /// let grown = tight.grown(0.25);
+    /// assert!(grown.sphere.radius >= 1.25 && grown.obb.half_extents.cmpge(Vec3::splat(1.25)).all());
+    /// assert!(grown.aabb.contains(&Aabb::new(Vec3::splat(-1.25), Vec3::splat(1.25))));
+    /// ```
+    pub fn grown(self, pad: f32) -> WorldBounds {
+        let up = |x: f32| (x + pad).next_up();
+        let Obb { center, axes, half_extents } = self.obb;
+        let h = Vec3::new(up(half_extents.x), up(half_extents.y), up(half_extents.z));
+        let (min, max) = (self.aabb.min, self.aabb.max);
+        WorldBounds {
+            sphere: Sphere { center: self.sphere.center, radius: up(self.sphere.radius) },
+            obb: Obb { center, axes, half_extents: h },
+            aabb: Aabb::new(
+                Vec3::new(
+                    (min.x - pad).next_down(),
+                    (min.y - pad).next_down(),
+                    (min.z - pad).next_down(),
+                ),
+                Vec3::new(up(max.x), up(max.y), up(max.z)),
+            ),
+        }
+    }
+}
+
 impl BodyBounds {
     /// The bounds at `pose` (a few dozen operations).
     #[inline(always)]

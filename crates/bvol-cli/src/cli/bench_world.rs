@@ -11,7 +11,7 @@ use std::time::{Duration, Instant};
 
 use bvol::tree::{PairCache, Tree};
 use bvol::volumes::{Aabb, Pose};
-use bvol::{BodyDesc, BodyId, FitOptions, FrameStats, Shape, World};
+use bvol::{BodyDesc, BodyId, FitOptions, FrameStats, Shape, World, WorldConfig};
 use bvol_cli::scenes::{Scene, SceneKind};
 use clap::Args;
 use glam::{Quat, Vec3};
@@ -44,6 +44,10 @@ pub struct WorldArgs {
     /// Threads, 1 to 1024 (the output is the same for any).
     #[arg(long, default_value_t = 1, value_parser = super::threads)]
     threads: usize,
+    /// The world's margin (`WorldConfig::margin`): bodies apart by at most
+    /// this are in contact too. A body's bounding sphere has radius 0.75.
+    #[arg(long, default_value_t = 0.0)]
+    margin: f32,
 }
 
 /// The radius of a body's bounding sphere in the scene: its boxes are cubes
@@ -113,7 +117,8 @@ struct Measured {
 /// Runs the world, then the tree alone on the same leaf boxes.
 fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
     let mut scene = Scene::new(args.scene, args.n, args.seed);
-    let mut world = World::new();
+    let mut world = World::with_config(WorldConfig::default().with_margin(args.margin))
+        .map_err(|e| e.to_string())?;
     let mut ids: Vec<BodyId> = Vec::with_capacity(args.n);
     let spins: Vec<Quat> =
         (0..args.n).map(|i| Quat::from_axis_angle(axis(i as u32), SPIN)).collect();
@@ -202,18 +207,20 @@ fn print(measured: &Measured, args: &WorldArgs) {
     println!("after spheres\t{:.1}\t{:.3}", count(|s| s.after_spheres), ms(|s| s.spheres_time));
     println!("after OBBs\t{:.1}\t{:.3}", count(|s| s.after_obbs), ms(|s| s.obbs_time));
     println!("touching\t{:.1}\t{:.3}", count(|s| s.touching), ms(|s| s.narrow_time));
+    println!("apart within the margin\t{:.1}\t-", count(|s| s.near));
     // Poses in, contacts out.
     let total = poses_ms + ms(|s| s.total_time());
     println!("whole frame\t-\t{total:.3}");
     println!("tree alone (bench pairs)\t-\t{tree_ms:.3}");
     println!(
-        "# n {}, scene {}, {} frames after {} settling, {} threads; whole frame / tree alone = {:.2}; \
+        "# n {}, scene {}, {} frames after {} settling, {} threads, margin {}; whole frame / tree alone = {:.2}; \
          bounds refit {:.1} M bodies/s, set poses + refit {:.1} M bodies/s",
         args.n,
         args.scene,
         totals.len(),
         args.settle,
         args.threads,
+        args.margin,
         total / tree_ms,
         moved / bounds / 1e3,
         args.n as f64 / (poses_ms + bounds) / 1e3

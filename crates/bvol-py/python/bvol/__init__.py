@@ -119,7 +119,9 @@ class World(_NativeWorld):
     Add bodies (`add_body`, `add_bodies`), move them (`set_poses`), run a
     frame (`update`), then read what touches (`pairs`, `events`,
     `contact`) or cast rays (`ray_cast`). Bodies are named by integer ids.
-    Touching exactly, a contact of depth 0, counts as touching.
+    Touching exactly, a contact of depth 0, counts as touching. A world made
+    with `margin=` counts bodies apart by at most that distance as in
+    contact too: their depths are negative, minus their distance.
     """
 
     def events(self) -> np.ndarray:

@@ -187,8 +187,9 @@ class World:
     """Bodies and what touches among them (use `bvol.World`, which adds
     `events` and `ray_cast`)."""
 
-    def __new__(cls, threads: Optional[int] = None) -> World:
-        """A world with no bodies; update runs on `threads` threads (by default, one per core)."""
+    def __new__(cls, threads: Optional[int] = None, margin: float = 0.0) -> World:
+        """A world with no bodies; update runs on `threads` threads (by default, one per core);
+        bodies apart by at most `margin` are in contact too, with negative depths."""
     def add_body(
         self,
         *,
@@ -234,7 +235,7 @@ class World:
     def update(self) -> dict[str, float]:
         """Runs one frame; returns each stage's pair count and time in seconds."""
     def pairs(self) -> npt.NDArray[np.uint64]:
-        """The pairs touching at the last update, an (M, 2) array of ids."""
+        """The pairs touching (or within the margin) at the last update, an (M, 2) array of ids."""
     def contact(self, a: int, b: int) -> Optional[dict[str, object]]:
         """How a and b touched at the last update (normal from a to b), or None."""
     def _event_columns(self) -> dict[str, npt.NDArray[np.generic]]:
