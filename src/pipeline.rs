@@ -123,9 +123,6 @@ impl<B: Broadphase> World<B> {
     /// at a time on SIMD lanes (reading a flag a slot costs less than
     /// gathering the moved ones by slot); when few did, a loop over those.
     fn place_bounds(&mut self) -> Vec<u32> {
-        // Half the margin a body: bodies within it of each other overlap.
-        let pad = self.config.margin * 0.5;
-        let grown = |w: WorldBounds| if pad > 0.0 { w.grown(pad) } else { w };
         let b = &mut self.bodies;
         let mut dirty = std::mem::take(&mut b.dirty);
         if dirty.len() * DENSE_PLACE >= b.shapes.len() {
@@ -154,7 +151,6 @@ impl<B: Broadphase> World<B> {
                     let (leaves, flags) = (&mut leaves[start..end], &mut flags[start..end]);
                     let (shapes, poses) = (&shapes[start..end], &poses[start..end]);
                     let mut store = |k: usize, w: WorldBounds| {
-                        let w = grown(w);
                         (spheres[k], obbs[k], leaves[k]) = (w.sphere, w.obb, w.aabb);
                     };
                     if let ([true, true, true, true], [Some(s0), Some(s1), Some(s2), Some(s3)]) =
@@ -178,7 +174,7 @@ impl<B: Broadphase> World<B> {
                 let i = s as usize;
                 b.is_dirty[i] = false;
                 if let Some(shape) = &b.shapes[i] {
-                    let w = grown(shape.bounds().at(&b.poses[i]));
+                    let w = shape.bounds().at(&b.poses[i]);
                     (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
                 }
             }
@@ -186,6 +182,17 @@ impl<B: Broadphase> World<B> {
         // A pass over the moved slots, only when one may have been freed.
         if std::mem::take(&mut b.removed) {
             dirty.retain(|&s| b.shapes[s as usize].is_some());
+        }
+        // Half the margin a body, so that bodies within it of each other
+        // overlap: a pass of its own, which a world without one skips.
+        let pad = self.config.margin * 0.5;
+        if pad > 0.0 {
+            for &s in &dirty {
+                let i = s as usize;
+                let tight = WorldBounds { sphere: b.spheres[i], obb: b.obbs[i], aabb: b.leaves[i] };
+                let w = tight.grown(pad);
+                (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
+            }
         }
         dirty
     }

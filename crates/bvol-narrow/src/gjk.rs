@@ -2,11 +2,10 @@
 //! Johnson & Keerthi 1988), as van den Bergen gives it for distances
 //! (Collision Detection in Interactive 3D Environments, 4.3): the point of
 //! the Minkowski difference nearest the origin, approached through simplices
-//! of its support points. Each simplex's nearest point is found by Johnson's
-//! sub-algorithm, here over every face of the simplex (at most fifteen): the
-//! nearest of the faces whose own nearest point lies inside them.
+//! of its support points, each simplex's nearest point found by the Voronoi
+//! regions of its features.
 
-use glam::{DMat3, DVec3};
+use glam::DVec3;
 
 use crate::Polyhedron;
 use crate::convex::Convex;
@@ -54,15 +53,6 @@ impl Core<'_> {
             }
         }
     }
-
-    /// A point of the core.
-    fn any_point(&self) -> DVec3 {
-        match self {
-            Core::Point(p) => *p,
-            Core::Segment(s) => s.start,
-            Core::Hull(hull, to) => to.apply(hull.vertex(0)),
-        }
-    }
 }
 
 /// A vertex of the simplex: a point of the difference `a - b`, with the
@@ -106,11 +96,20 @@ impl Simplex {
 /// The closest points of cores `a` and `b`, one on each, if they are apart:
 /// `None` when the search finds them meeting (the nearest point of the
 /// difference is the origin, to rounding). `size` is the length that the
-/// tolerances are relative to.
-pub(crate) fn closest_points(a: &Core, b: &Core, size: f64) -> Option<(DVec3, DVec3)> {
+/// tolerances are relative to. The search starts from the points of each
+/// farthest toward the other along `towards_b` (a separating axis, from A
+/// to B, makes that a near start).
+pub(crate) fn closest_points(
+    a: &Core,
+    b: &Core,
+    size: f64,
+    towards_b: DVec3,
+) -> Option<(DVec3, DVec3)> {
     let (mut from_a, mut from_b) = (None, None);
     let mut simplex = Simplex::default();
-    simplex.push(Vertex { a: a.any_point(), b: b.any_point() });
+    let start =
+        Vertex { a: a.support(towards_b, &mut from_a), b: b.support(-towards_b, &mut from_b) };
+    simplex.push(start);
     simplex.weights[0] = 1.0;
     let tiny = (size * 1e-12).powi(2);
     for _ in 0..MAX_STEPS {
@@ -133,62 +132,117 @@ pub(crate) fn closest_points(a: &Core, b: &Core, size: f64) -> Option<(DVec3, DV
             // Rounding: the grown simplex came no nearer, so the last is best.
             break;
         }
+        if nearer.len == 0 {
+            return None;
+        }
         simplex = nearer;
     }
     Some((simplex.point(|v| v.a), simplex.point(|v| v.b)))
 }
 
-/// The face of `simplex` (a subset of its vertices), with its weights, whose
-/// nearest point to the origin lies inside it and is nearest of all such:
-/// Johnson's sub-algorithm by brute force over the subsets.
+/// The point of `simplex` nearest the origin: the smallest face of it that
+/// holds that point, with its weights, by the Voronoi regions of its
+/// features (Ericson, Real-Time Collision Detection 5.1.2, 5.1.5, 5.1.6).
 fn nearest_face(simplex: &Simplex) -> Simplex {
-    let n = simplex.len;
-    let mut best: Option<(Simplex, f64)> = None;
-    for mask in 1u32..(1 << n) {
-        let mut face = Simplex::default();
-        (0..n).filter(|&i| mask & (1 << i) != 0).for_each(|i| face.push(simplex.vertices[i]));
-        let Some(weights) = interior_weights(face.vertices()) else { continue };
-        face.weights = weights;
-        let d = face.point(Vertex::w).length_squared();
-        if best.as_ref().is_none_or(|(kept, e)| d < *e || (d == *e && face.len < kept.len)) {
-            best = Some((face, d));
-        }
+    match *simplex.vertices() {
+        [a] => weighted(&[(a, 1.0)]),
+        [a, b] => nearest_on_segment(a, b),
+        [a, b, c] => nearest_on_triangle(a, b, c),
+        [a, b, c, d] => nearest_on_tetrahedron(a, b, c, d),
+        _ => *simplex,
     }
-    // A single vertex always has its weight, so some face is found.
-    best.map_or(*simplex, |(face, _)| face)
 }
 
-/// The weights (summing to 1) of `face`'s vertices at the point of their
-/// affine hull nearest the origin, if it lies strictly inside the face
-/// (every weight positive) and the face spans its dimension: with
-/// `e_i = w_i - w_0`, the `mu` solving the normal equations
-/// `G mu = -E^T w_0` are the weights of `w_1..`, and `1 - sum mu` that of
-/// `w_0`. A face whose Gram determinant is within rounding of zero does not
-/// span its dimension: its nearest point is some smaller face's.
-fn interior_weights(face: &[Vertex]) -> Option<[f64; 4]> {
-    let w0 = face[0].w();
-    let k = face.len() - 1;
-    let mut edges = [DVec3::ZERO; 3];
-    for (e, v) in edges.iter_mut().zip(&face[1..]) {
-        *e = v.w() - w0;
+/// The simplex of the vertices with positive weights.
+fn weighted(vertices: &[(Vertex, f64)]) -> Simplex {
+    let mut face = Simplex::default();
+    for &(v, l) in vertices.iter().filter(|(_, l)| *l > 0.0) {
+        face.weights[face.len] = l;
+        face.push(v);
     }
-    let mut gram = DMat3::IDENTITY;
-    let mut rhs = DVec3::ZERO;
-    for i in 0..k {
-        for j in 0..k {
-            gram.col_mut(j)[i] = edges[i].dot(edges[j]);
-        }
-        rhs[i] = -w0.dot(edges[i]);
+    face
+}
+
+/// The nearest point of segment `ab` (Ericson 5.1.2).
+fn nearest_on_segment(a: Vertex, b: Vertex) -> Simplex {
+    let ab = b.w() - a.w();
+    let len2 = ab.length_squared();
+    let t = if len2 > 0.0 { (-a.w().dot(ab) / len2).clamp(0.0, 1.0) } else { 0.0 };
+    weighted(&[(a, 1.0 - t), (b, t)])
+}
+
+/// The nearest point of triangle `abc`: Ericson 5.1.5's
+/// `ClosestPtPointTriangle` for the origin, a degenerate triangle by its
+/// nearest edge.
+fn nearest_on_triangle(a: Vertex, b: Vertex, c: Vertex) -> Simplex {
+    let (pa, pb, pc) = (a.w(), b.w(), c.w());
+    let (ab, ac) = (pb - pa, pc - pa);
+    let (d1, d2) = (-ab.dot(pa), -ac.dot(pa));
+    if d1 <= 0.0 && d2 <= 0.0 {
+        return weighted(&[(a, 1.0)]);
     }
-    let scale: f64 = (0..k).map(|i| gram.col(i)[i]).product();
-    // A NaN determinant (from a NaN point) fails too.
-    let spans = gram.determinant() > 1e-12 * scale;
-    if !spans {
-        return None;
+    let (d3, d4) = (-ab.dot(pb), -ac.dot(pb));
+    if d3 >= 0.0 && d4 <= d3 {
+        return weighted(&[(b, 1.0)]);
     }
-    let mu = gram.inverse() * rhs;
-    let mut weights = [0.0; 4];
-    weights[1..=k].copy_from_slice(&mu.to_array()[..k]);
-    weights[0] = 1.0 - weights[1..].iter().sum::<f64>();
-    weights[..face.len()].iter().all(|&l| l > 0.0).then_some(weights)
+    let vc = d1 * d4 - d3 * d2;
+    if vc <= 0.0 && d1 >= 0.0 && d3 <= 0.0 {
+        let v = d1 / (d1 - d3);
+        return weighted(&[(a, 1.0 - v), (b, v)]);
+    }
+    let (d5, d6) = (-ab.dot(pc), -ac.dot(pc));
+    if d6 >= 0.0 && d5 <= d6 {
+        return weighted(&[(c, 1.0)]);
+    }
+    let vb = d5 * d2 - d1 * d6;
+    if vb <= 0.0 && d2 >= 0.0 && d6 <= 0.0 {
+        let w = d2 / (d2 - d6);
+        return weighted(&[(a, 1.0 - w), (c, w)]);
+    }
+    let va = d3 * d6 - d5 * d4;
+    if va <= 0.0 && d4 - d3 >= 0.0 && d5 - d6 >= 0.0 {
+        let w = (d4 - d3) / ((d4 - d3) + (d5 - d6));
+        return weighted(&[(b, 1.0 - w), (c, w)]);
+    }
+    let total = va + vb + vc;
+    // Also when NaN.
+    let flat = total.partial_cmp(&0.0) != Some(std::cmp::Ordering::Greater);
+    if flat {
+        // Flat to rounding: the nearest of its edges.
+        let edges = [nearest_on_segment(a, b), nearest_on_segment(b, c), nearest_on_segment(a, c)];
+        return nearest_of(edges);
+    }
+    let (v, w) = (vb / total, vc / total);
+    weighted(&[(a, 1.0 - v - w), (b, v), (c, w)])
+}
+
+/// The nearest point of tetrahedron `abcd`: that of the faces the origin
+/// lies outside of (Ericson 5.1.6), or an empty simplex when it lies inside
+/// (the point nearest is the origin itself). A flat tetrahedron (its volume
+/// within rounding of zero, where the sides of its faces' planes are
+/// rounding's to pick) is the nearest of all its faces.
+fn nearest_on_tetrahedron(a: Vertex, b: Vertex, c: Vertex, d: Vertex) -> Simplex {
+    let (ab, ac, ad) = (b.w() - a.w(), c.w() - a.w(), d.w() - a.w());
+    let volume = ab.dot(ac.cross(ad));
+    let flat = volume.abs() <= 1e-9 * ab.length() * ac.length() * ad.length();
+    let faces = [(a, b, c, d), (a, c, d, b), (a, d, b, c), (b, d, c, a)];
+    let outside = |(p, q, r, s): (Vertex, Vertex, Vertex, Vertex)| {
+        let n = (q.w() - p.w()).cross(r.w() - p.w());
+        flat || -p.w().dot(n) * (s.w() - p.w()).dot(n) <= 0.0
+    };
+    let mut found =
+        faces.iter().filter(|&&f| outside(f)).map(|&(p, q, r, _)| nearest_on_triangle(p, q, r));
+    match found.next() {
+        Some(first) => nearest_of(std::iter::once(first).chain(found)),
+        None => Simplex::default(),
+    }
+}
+
+/// The face whose point is nearest the origin, the first of ties.
+fn nearest_of(faces: impl IntoIterator<Item = Simplex>) -> Simplex {
+    let distance = |f: &Simplex| f.point(Vertex::w).length_squared();
+    faces
+        .into_iter()
+        .reduce(|x, y| if distance(&y) < distance(&x) { y } else { x })
+        .unwrap_or_default()
 }

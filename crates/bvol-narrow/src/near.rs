@@ -66,21 +66,22 @@ pub fn contact_within(
     let (core_a, radius_a, size_a) = core(a, DIsometry3::IDENTITY);
     let (core_b, radius_b, size_b) = core(b, rel);
     let local_axis = to_world.unrotate(axis);
-    let (normal, distance, midway) = match closest_points(&core_a, &core_b, size_a.max(size_b)) {
-        Some((pa, pb)) => {
-            let offset = pb - pa;
-            let normal = offset.try_normalize().unwrap_or(local_axis);
-            let distance = offset.length() - radius_a - radius_b;
-            let (on_a, on_b) = (pa + normal * radius_a, pb - normal * radius_b);
-            (normal, distance.max(lower), (on_a + on_b) * 0.5)
-        }
-        // Apart by a gap too small for the search to see: the test's axis
-        // and gap, at A's point farthest along it.
-        None => {
-            let on_a = a.support(local_axis.as_vec3()).as_dvec3();
-            (local_axis, lower, on_a + local_axis * (lower * 0.5))
-        }
-    };
+    let (normal, distance, midway) =
+        match closest_points(&core_a, &core_b, size_a.max(size_b), local_axis) {
+            Some((pa, pb)) => {
+                let offset = pb - pa;
+                let normal = offset.try_normalize().unwrap_or(local_axis);
+                let distance = offset.length() - radius_a - radius_b;
+                let (on_a, on_b) = (pa + normal * radius_a, pb - normal * radius_b);
+                (normal, distance.max(lower), (on_a + on_b) * 0.5)
+            }
+            // Apart by a gap too small for the search to see: the test's axis
+            // and gap, at A's point farthest along it.
+            None => {
+                let on_a = a.support(local_axis.as_vec3()).as_dvec3();
+                (local_axis, lower, on_a + local_axis * (lower * 0.5))
+            }
+        };
     if distance > f64::from(margin) {
         return Ok(None);
     }
