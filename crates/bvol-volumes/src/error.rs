@@ -37,6 +37,64 @@ impl fmt::Display for FitError {
 
 impl std::error::Error for FitError {}
 
+/// Why [`ConvexHull::from_parts`](crate::ConvexHull::from_parts) refused its
+/// parts.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum HullError {
+    /// Vertex `index` is not finite or beyond [`MAX_COORDINATE`].
+    BadVertex {
+        /// Its index.
+        index: usize,
+    },
+    /// Fewer than four faces, or not one normal and offset a face.
+    FaceCount {
+        /// How many faces were given.
+        faces: usize,
+    },
+    /// Face `face` has fewer than three vertices, an index out of range, a
+    /// normal that is not unit or an offset that is not finite.
+    BadFace {
+        /// Its index.
+        face: usize,
+    },
+    /// A vertex of face `face` is off its plane, or some vertex in front of
+    /// it, by more than the tolerance.
+    NotConvex {
+        /// Its index.
+        face: usize,
+    },
+    /// The tolerance is negative or not finite.
+    BadTolerance,
+}
+
+impl fmt::Display for HullError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            HullError::BadVertex { index } => write!(
+                f,
+                "hull vertex {index} is not finite or has a coordinate beyond ±{MAX_COORDINATE:e}"
+            ),
+            HullError::FaceCount { faces } => write!(
+                f,
+                "a solid hull needs at least four faces, each with a normal and an offset; got {faces} faces"
+            ),
+            HullError::BadFace { face } => write!(
+                f,
+                "hull face {face} has under three vertices, an index out of range, a normal that \
+                 is not unit or an offset that is not finite"
+            ),
+            HullError::NotConvex { face } => write!(
+                f,
+                "hull face {face}: a vertex lies off its plane or in front of it by more than the tolerance"
+            ),
+            HullError::BadTolerance => write!(f, "the hull's tolerance is negative or not finite"),
+        }
+    }
+}
+
+impl std::error::Error for HullError {}
+
 /// The largest magnitude bvol takes for a coordinate: of a point to fit, of
 /// a body's position, of a shape's vertex in its own frame, of a primitive's
 /// size. Within it every bound, and every square and area of one, is finite

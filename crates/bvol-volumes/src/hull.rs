@@ -22,7 +22,7 @@ use std::sync::OnceLock;
 
 use glam::{DVec3, Vec3};
 
-use crate::FitError;
+use crate::{FitError, HullError, MAX_COORDINATE};
 
 /// A point set seen from its box centre, with its distance tolerance.
 struct CentredPoints<'a> {
@@ -271,6 +271,54 @@ impl ConvexHull {
         }
     }
 
+    /// A solid hull from its parts, as [`vertices`](Self::vertices),
+    /// [`face`](Self::face), [`face_normal`](Self::face_normal),
+    /// [`face_offset`](Self::face_offset) and [`tolerance`](Self::tolerance)
+    /// give them: what a saved hull is loaded from. The parts are checked to
+    /// make a hull as [`new`](Self::new) makes one, or [`HullError`] names
+    /// the first that does not: every vertex finite and within
+    /// [`MAX_COORDINATE`](crate::MAX_COORDINATE), at least four faces of at
+    /// least three vertices each, every index in range, unit normals, finite
+    /// offsets, each face's vertices within the tolerance of its plane and
+    /// every vertex behind every plane or within the tolerance. (That the
+    /// faces close up is the reader's to check.)
+    ///
+    /// ```
+    /// use bvol_volumes::ConvexHull;
+    /// use glam::Vec3;
+    /// let cube = ConvexHull::cuboid(Vec3::ONE)?;
+    /// let faces = (0..cube.face_count()).map(|f| cube.face(f).to_vec()).collect();
+    /// let normals = (0..cube.face_count()).map(|f| cube.face_normal(f)).collect();
+    /// let offsets = (0..cube.face_count()).map(|f| cube.face_offset(f)).collect();
+    /// let again = ConvexHull::from_parts(cube.vertices().to_vec(), faces, normals, offsets, cube.tolerance())?;
+    /// assert_eq!(again.volume(), 8.0);
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn from_parts(
+        vertices: Vec<Vec3>,
+        faces: Vec<Vec<u32>>,
+        normals: Vec<DVec3>,
+        offsets: Vec<f64>,
+        tolerance: f64,
+    ) -> Result<ConvexHull, HullError> {
+        check_parts(&vertices, &faces, &normals, &offsets, tolerance)?;
+        let mut face_starts = vec![0u32];
+        let mut face_vertices = Vec::new();
+        for face in &faces {
+            face_vertices.extend_from_slice(face);
+            face_starts.push(face_vertices.len() as u32);
+        }
+        Ok(ConvexHull {
+            vertices,
+            face_vertices,
+            face_starts,
+            normals,
+            offsets,
+            dimension: 3,
+            tolerance,
+        })
+    }
+
     /// 0 for a single point (all input points equal), 1 for a segment (collinear
     /// within tolerance), 2 for a flat polygon (coplanar within tolerance), 3 for
     /// a solid.
@@ -426,4 +474,41 @@ fn widest_axis_extremes(centred: &CentredPoints) -> (u32, u32) {
 fn box_corners(half: Vec3) -> Vec<Vec3> {
     let sign = |i: usize, bit: usize| if i & (1 << bit) == 0 { -1.0 } else { 1.0 };
     (0..8).map(|i| Vec3::new(sign(i, 0), sign(i, 1), sign(i, 2)) * half).collect()
+}
+
+/// [`ConvexHull::from_parts`]' checks.
+fn check_parts(
+    vertices: &[Vec3],
+    faces: &[Vec<u32>],
+    normals: &[DVec3],
+    offsets: &[f64],
+    tolerance: f64,
+) -> Result<(), HullError> {
+    let limit = Vec3::splat(MAX_COORDINATE);
+    if let Some(index) =
+        vertices.iter().position(|v| !(v.is_finite() && v.abs().cmple(limit).all()))
+    {
+        return Err(HullError::BadVertex { index });
+    }
+    if faces.len() < 4 || normals.len() != faces.len() || offsets.len() != faces.len() {
+        return Err(HullError::FaceCount { faces: faces.len() });
+    }
+    if !(tolerance.is_finite() && tolerance >= 0.0) {
+        return Err(HullError::BadTolerance);
+    }
+    // Rounding of the distances here, beyond the hull's own.
+    let slack = tolerance * (1.0 + 1e-9) + 1e-300;
+    for (face, ((loop_, &normal), &offset)) in faces.iter().zip(normals).zip(offsets).enumerate() {
+        let unit = normal.is_finite() && (normal.length() - 1.0).abs() <= 1e-9;
+        let indices_ok = loop_.len() >= 3 && loop_.iter().all(|&v| (v as usize) < vertices.len());
+        if !(unit && offset.is_finite() && indices_ok) {
+            return Err(HullError::BadFace { face });
+        }
+        let height = |v: Vec3| normal.dot(v.as_dvec3()) - offset;
+        let on = loop_.iter().all(|&v| height(vertices[v as usize]).abs() <= slack);
+        if !(on && vertices.iter().all(|&v| height(v) <= slack)) {
+            return Err(HullError::NotConvex { face });
+        }
+    }
+    Ok(())
 }

@@ -42,7 +42,7 @@ mod round;
 mod sphere;
 
 pub use aabb::Aabb;
-pub use error::{FitError, MAX_COORDINATE, UnknownMethod};
+pub use error::{FitError, HullError, MAX_COORDINATE, UnknownMethod};
 pub use fit::{ObbMethod, SphereMethod};
 pub use hull::ConvexHull;
 pub use kdop::{Kdop, Kdop6, Kdop14, Kdop18, Kdop26};

@@ -10,7 +10,7 @@ mod common;
 use std::collections::{HashMap, HashSet};
 use std::f64::consts::PI;
 
-use bvol_volumes::{ConvexHull, FitError};
+use bvol_volumes::{ConvexHull, FitError, HullError};
 use glam::{DVec3, Quat, Vec3};
 use proptest::prelude::*;
 use rand::rngs::Xoshiro256PlusPlus;
@@ -691,4 +691,61 @@ proptest! {
             (closed, built) => prop_assert_eq!(closed.err(), built.err()),
         }
     }
+}
+
+/// A hull's parts as `from_parts` takes them.
+type Parts = (Vec<Vec3>, Vec<Vec<u32>>, Vec<DVec3>, Vec<f64>, f64);
+
+fn parts_of(h: &ConvexHull) -> Parts {
+    let n = h.face_count();
+    (
+        h.vertices().to_vec(),
+        (0..n).map(|f| h.face(f).to_vec()).collect(),
+        (0..n).map(|f| h.face_normal(f)).collect(),
+        (0..n).map(|f| h.face_offset(f)).collect(),
+        h.tolerance(),
+    )
+}
+
+fn from_parts((v, f, n, o, t): Parts) -> Result<ConvexHull, HullError> {
+    ConvexHull::from_parts(v, f, n, o, t)
+}
+
+/// Every mesh's hull, a grid's and a cube's come back from their parts as
+/// they were; parts that break any of its checks are refused, naming the
+/// first.
+#[test]
+fn hulls_come_back_from_their_parts() {
+    let mut hulls: Vec<ConvexHull> =
+        common::references().iter().map(|r| hull_of(&common::mesh(&r.name))).collect();
+    hulls.push(hull_of(&grid(5)));
+    hulls.push(ConvexHull::cuboid(Vec3::new(2.0, 0.5, 1e-3)).unwrap());
+    for h in &hulls {
+        let again = from_parts(parts_of(h)).unwrap();
+        assert_eq!(parts_of(&again), parts_of(h));
+        assert_eq!((again.dimension(), again.volume()), (3, h.volume()));
+    }
+    let good = parts_of(&hulls[0]);
+    let broken = |edit: &dyn Fn(&mut Parts)| {
+        let mut p = good.clone();
+        edit(&mut p);
+        from_parts(p).err()
+    };
+    assert_eq!(broken(&|p| p.0[3].x = f32::NAN), Some(HullError::BadVertex { index: 3 }));
+    assert_eq!(broken(&|p| p.0[3].x = 2e18), Some(HullError::BadVertex { index: 3 }));
+    assert_eq!(broken(&|p| p.1.truncate(3)), Some(HullError::FaceCount { faces: 3 }));
+    assert_eq!(
+        broken(&|p| {
+            p.2.pop();
+        }),
+        Some(HullError::FaceCount { faces: good.1.len() })
+    );
+    assert_eq!(broken(&|p| p.1[2][0] = 1 << 30), Some(HullError::BadFace { face: 2 }));
+    assert_eq!(broken(&|p| p.1[2].truncate(2)), Some(HullError::BadFace { face: 2 }));
+    assert_eq!(broken(&|p| p.2[2] *= 1.01), Some(HullError::BadFace { face: 2 }));
+    assert_eq!(broken(&|p| p.3[2] = f64::INFINITY), Some(HullError::BadFace { face: 2 }));
+    assert_eq!(broken(&|p| p.3[2] -= 0.1), Some(HullError::NotConvex { face: 2 }));
+    assert_eq!(broken(&|p| p.4 = -1.0), Some(HullError::BadTolerance));
+    let message = broken(&|p| p.1[2][0] = 1 << 30).unwrap().to_string();
+    assert!(message.contains("face 2"), "{message}");
 }
