@@ -31,8 +31,17 @@ pub struct Contact {
 }
 
 impl Contact {
-    /// A contact from its normal, depth and points (at most [`MAX_POINTS`] are kept).
-    pub(crate) fn new(normal: Vec3, depth: f32, points: &[ContactPoint]) -> Contact {
+    /// A contact from its normal, depth and points (at most [`MAX_POINTS`]
+    /// are kept): as a test makes one, or as a saved one is loaded.
+    ///
+    /// ```
+    /// use bvol_narrow::{Contact, ContactPoint};
+    /// use glam::Vec3;
+    /// let point = ContactPoint { position: Vec3::ZERO, depth: 0.1 };
+    /// let contact = Contact::new(Vec3::Y, 0.1, &[point; 6]);
+    /// assert_eq!(contact.points().len(), bvol_narrow::MAX_POINTS);
+    /// ```
+    pub fn new(normal: Vec3, depth: f32, points: &[ContactPoint]) -> Contact {
         let count = points.len().min(MAX_POINTS);
         let mut all = [ContactPoint::default(); MAX_POINTS];
         all[..count].copy_from_slice(&points[..count]);

@@ -26,6 +26,75 @@ impl HullPart {
     }
 }
 
+/// What builds a hull part again, bit for bit: the form a saved part takes.
+#[derive(Clone, Debug)]
+pub enum HullSource {
+    /// A box: [`Polyhedron::cuboid`] and [`ConvexHull::cuboid`] of these
+    /// half extents.
+    Cuboid(Vec3),
+    /// A hull: [`Polyhedron::from_hull`] of it, beside it.
+    Hull(ConvexHull),
+}
+
+impl HullPart {
+    /// What builds this part again, bit for bit ([`HullSource::build`]):
+    /// `None` for a part put together by hand whose polyhedron is not the
+    /// one its hull or its box makes (every part this crate makes has a
+    /// source). It builds the part again to compare, so it costs what
+    /// building the part did.
+    ///
+    /// ```
+    /// use bvol_narrow::HullPart;
+    /// use glam::Vec3;
+    /// let part = HullPart::from_points(&[Vec3::ZERO, Vec3::X, Vec3::Y, Vec3::Z])?;
+    /// let again = part.source().expect("made here").build()?;
+    /// assert_eq!(again.polyhedron.vertices(), part.polyhedron.vertices());
+    /// # Ok::<(), bvol_narrow::ShapeError>(())
+    /// ```
+    pub fn source(&self) -> Option<HullSource> {
+        if let Some((half, _)) = &self.polyhedron.box_shape {
+            let source = HullSource::Cuboid(half.as_vec3());
+            if source.build().is_ok_and(|part| part.same_as(self)) {
+                return Some(source);
+            }
+        }
+        let source = HullSource::Hull(self.hull.clone());
+        source.build().is_ok_and(|part| part.same_as(self)).then_some(source)
+    }
+
+    /// Whether two parts have the same polyhedron and hull, to the bit.
+    fn same_as(&self, other: &HullPart) -> bool {
+        let (p, q) = (&self.polyhedron, &other.polyhedron);
+        let same_solid =
+            p.vertices == q.vertices && p.planes == q.planes && p.topology == q.topology;
+        let (h, k) = (&self.hull, &other.hull);
+        fn faces(h: &ConvexHull) -> impl Iterator<Item = (&[u32], DVec3, f64)> {
+            (0..h.face_count()).map(|f| (h.face(f), h.face_normal(f), h.face_offset(f)))
+        }
+        same_solid
+            && h.vertices() == k.vertices()
+            && h.tolerance() == k.tolerance()
+            && faces(h).eq(faces(k))
+    }
+}
+
+impl HullSource {
+    /// The part it builds; the polyhedron's errors where that is not a
+    /// solid.
+    pub fn build(&self) -> Result<HullPart, ShapeError> {
+        match self {
+            HullSource::Cuboid(half) => {
+                let polyhedron = Polyhedron::cuboid(*half)?;
+                let hull = ConvexHull::cuboid(*half).map_err(|_| ShapeError::BadHalfExtents)?;
+                Ok(HullPart { polyhedron, hull })
+            }
+            HullSource::Hull(hull) => {
+                Ok(HullPart { polyhedron: Polyhedron::from_hull(hull)?, hull: hull.clone() })
+            }
+        }
+    }
+}
+
 impl PartKind for HullPart {
     fn local_bounds(&self) -> Aabb {
         let v = self.polyhedron.vertices();

@@ -114,7 +114,7 @@ pub use collision::{Collision, Contact, ContactPoint};
 pub use error::{Body, NarrowError, ShapeError};
 pub use flat::FLAT_THICKNESS;
 pub use hull_hull::hull_hull;
-pub use hull_part::HullPart;
+pub use hull_part::{HullPart, HullSource};
 pub use manifold::MAX_POINTS;
 pub use mass::MassProperties;
 pub use near::contact_within;
