@@ -70,6 +70,8 @@ mod narrow_phase;
 mod pipeline;
 mod scratch;
 mod shape;
+#[cfg(feature = "serde")]
+mod snapshot;
 mod stats;
 mod world;
 
@@ -85,5 +87,7 @@ pub use glam;
 pub use limits::{MAX_COORDINATE, ROTATION_LENGTH_SQUARED};
 pub use mesh::{Mesh, MeshError, MeshProblem, load_obj};
 pub use shape::{FitOptions, Shape, ShapeError};
+#[cfg(feature = "serde")]
+pub use snapshot::{Snapshot, SnapshotError};
 pub use stats::FrameStats;
 pub use world::{RayHit, World};

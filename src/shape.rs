@@ -293,6 +293,19 @@ impl Shape {
         MassProperties::combine(self.parts.iter().map(Part::mass_properties))
     }
 
+    /// The methods its bounds were fitted by.
+    #[cfg(feature = "serde")]
+    pub(crate) fn fit_options(&self) -> FitOptions {
+        self.fit
+    }
+
+    /// A shape of these parts and bounds, as saved: the snapshot's
+    /// checks are the caller's.
+    #[cfg(feature = "serde")]
+    pub(crate) fn restore(parts: Vec<Part>, bounds: BodyBounds, fit: FitOptions) -> Shape {
+        Shape { parts, bounds, fit }
+    }
+
     /// The bounds of the parts' fit points, by the chosen methods. A lone
     /// part whose smallest sphere is known in closed form (a ball, a capsule)
     /// is bounded by that sphere, whatever the method; one whose smallest
