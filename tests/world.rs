@@ -762,6 +762,9 @@ enum Op {
     Sleep,
     /// Runs a frame and checks it, and a ray cast from `from` towards `to`.
     Update { from: Vec3, to: Vec3 },
+    /// Saves the world as JSON and goes on with the world loaded from it
+    /// (with the `serde` feature; without it, nothing).
+    Reload,
 }
 
 const KINDS: [BodyKind; 3] = [BodyKind::Dynamic, BodyKind::Static, BodyKind::Sleeping];
@@ -786,6 +789,7 @@ fn any_op() -> impl Strategy<Value = Op> {
         2 => (any::<usize>(), any_pose()).prop_map(|(k, pose)| Op::Move(k, pose)),
         1 => prop::array::uniform3(-0.3f32..0.3).prop_map(|d| Op::Nudge(Vec3::from_array(d))),
         1 => Just(Op::Sleep),
+        1 => Just(Op::Reload),
         3 => (prop::array::uniform3(-1.0f32..3.5), prop::array::uniform3(0.0f32..2.5))
             .prop_map(|(from, to)| Op::Update { from: from.into(), to: to.into() }),
     ]
@@ -849,7 +853,8 @@ proptest! {
     #![proptest_config(ProptestConfig { cases: 48, ..ProptestConfig::default() })]
 
     /// Random sequences of adds (every shape, kind and filter), removals,
-    /// kind changes, single moves and moves of all at once, on a world
+    /// kind changes, single moves and moves of all at once, and saving and
+    /// loading the world (with the `serde` feature), on a world
     /// small and dense enough that most bodies touch, scaled to sizes of
     /// 1e-3, 1 and 1e3 and placed at the origin or 1e4 from it (where f32
     /// steps, about 1e-3, are coarser than the shapes of size 1e-3), with
@@ -917,6 +922,13 @@ proptest! {
                 Op::Sleep => {
                     for &(id, _) in &model.live {
                         world.set_kind(id, BodyKind::Sleeping).unwrap();
+                    }
+                }
+                Op::Reload => {
+                    #[cfg(feature = "serde")]
+                    {
+                        let text = serde_json::to_string(&world.snapshot()).unwrap();
+                        world = World::from_snapshot(&serde_json::from_str(&text).unwrap()).unwrap();
                     }
                 }
                 Op::Update { from, to } => {
