@@ -6,16 +6,17 @@ use bvol::glam::{Quat, Vec3};
 use bvol::narrow::MAX_POINTS;
 use bvol::volumes::Pose;
 use bvol::{
-    BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, World, WorldConfig, WorldError,
+    BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, Snapshot, World, WorldConfig,
+    WorldError,
 };
 use numpy::{PyArray1, PyArray2};
 use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
-use pyo3::types::{PyDict, PyTuple};
+use pyo3::types::{PyBytes, PyDict, PyTuple};
 
 use crate::arrays::{Array1, floats, integers, rows_array, same_rows, vector_array, vectors};
 use crate::batch::{check_max_t, rays};
-use crate::errors::world_error;
+use crate::errors::{value_error, world_error};
 use crate::shape::PyShape;
 
 /// The id that names no body: where a ray met nothing.
@@ -189,6 +190,34 @@ impl PyWorld {
 
     fn __len__(&self) -> usize {
         self.world.len()
+    }
+
+    /// The world saved, as JSON bytes: `World.from_snapshot` (or pickle,
+    /// which calls this) loads it back to run on exactly as this world
+    /// would have, event for event.
+    fn snapshot<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        let world = &self.world;
+        let data = py.detach(|| serde_json::to_vec(&world.snapshot())).map_err(value_error)?;
+        Ok(PyBytes::new(py, &data))
+    }
+
+    /// Becomes the world `data` (from `snapshot`) saved; bad data is a
+    /// `ValueError` naming what is wrong, and changes nothing.
+    fn _load_snapshot(&mut self, py: Python<'_>, data: &[u8]) -> PyResult<()> {
+        let loaded = py.detach(|| {
+            let snapshot: Snapshot = serde_json::from_slice(data).map_err(|e| e.to_string())?;
+            World::from_snapshot(&snapshot).map_err(|e| e.to_string())
+        });
+        self.world = loaded.map_err(value_error)?;
+        Ok(())
+    }
+
+    fn __getstate__<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyBytes>> {
+        self.snapshot(py)
+    }
+
+    fn __setstate__(&mut self, py: Python<'_>, state: &[u8]) -> PyResult<()> {
+        self._load_snapshot(py, state)
     }
 
     /// Runs one frame and returns what each stage let through and how long

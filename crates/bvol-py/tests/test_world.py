@@ -3,6 +3,8 @@ contacts and ray hits."""
 
 from __future__ import annotations
 
+import pickle
+
 import numpy as np
 import pytest
 
@@ -137,6 +139,33 @@ def test_balls_within_the_margin_are_in_contact_with_their_distance():
         assert np.isclose(contact["depth"], -g, atol=1e-5)
     with pytest.raises(ValueError, match="margin"):
         bvol.World(margin=-1.0)
+
+
+def test_a_saved_world_runs_on_with_the_same_events():
+    rng = np.random.default_rng(23)
+    positions, radii = ball_scene(rng, n=300)
+    world = bvol.World(margin=0.02)
+    ids = add_balls(world, positions, radii)
+    world.update()
+    pickled = pickle.loads(pickle.dumps(world))
+    loaded = bvol.World.from_snapshot(world.snapshot())
+    assert type(pickled) is bvol.World and type(loaded) is bvol.World
+    compared = 0
+    for _ in range(3):
+        positions = positions + rng.normal(0, 0.05, positions.shape).astype(np.float32)
+        for w in (world, pickled, loaded):
+            w.set_poses(ids, positions)
+            w.update()
+        want = world.events()
+        for w in (pickled, loaded):
+            got = w.events()
+            for name in want.dtype.names:
+                np.testing.assert_array_equal(got[name], want[name])
+        compared += len(want)
+    assert compared > 300
+    for bad in (b"{}", b"not json", world.snapshot()[:-10]):
+        with pytest.raises(ValueError):
+            bvol.World.from_snapshot(bad)
 
 
 def test_contacts_of_two_balls_are_the_exact_ones():

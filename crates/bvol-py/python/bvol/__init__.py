@@ -124,6 +124,15 @@ class World(_NativeWorld):
     contact too: their depths are negative, minus their distance.
     """
 
+    @classmethod
+    def from_snapshot(cls, data: bytes) -> "World":
+        """The world `snapshot()` saved, to run on exactly as it would have,
+        event for event (pickling a World does the same). Bad data raises
+        ValueError."""
+        world = cls()
+        world._load_snapshot(data)
+        return world
+
     def events(self) -> np.ndarray:
         """The last update's contact events, an array of `EVENT_DTYPE`.
 

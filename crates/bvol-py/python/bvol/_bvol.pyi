@@ -232,6 +232,12 @@ class World:
     def ids(self) -> npt.NDArray[np.uint64]:
         """Every body's id, in slot order."""
     def __len__(self) -> int: ...
+    def snapshot(self) -> bytes:
+        """The world saved as JSON bytes, to load with World.from_snapshot or pickle."""
+    def _load_snapshot(self, data: bytes) -> None:
+        """Becomes the world the bytes saved."""
+    def __getstate__(self) -> bytes: ...
+    def __setstate__(self, state: bytes) -> None: ...
     def update(self) -> dict[str, float]:
         """Runs one frame; returns each stage's pair count and time in seconds."""
     def pairs(self) -> npt.NDArray[np.uint64]:
