@@ -128,12 +128,13 @@ pub(crate) fn closest_points(
         let mut grown = simplex;
         grown.push(next);
         let nearer = nearest_face(&grown);
+        if nearer.len == 0 {
+            // The grown simplex holds the origin: the cores meet.
+            return None;
+        }
         if nearer.point(Vertex::w).length_squared() >= vv {
             // Rounding: the grown simplex came no nearer, so the last is best.
             break;
-        }
-        if nearer.len == 0 {
-            return None;
         }
         simplex = nearer;
     }

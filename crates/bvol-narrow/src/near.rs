@@ -91,15 +91,18 @@ pub fn contact_within(
 }
 
 /// A part's core placed by `to` into the space the search works in, its
-/// radius (what the part adds round the core), and its size (half its
-/// bounds' diagonal).
+/// radius (what the part adds round the core), and a length it is of the
+/// order of, for relative tolerances.
 fn core(part: &Part, to: DIsometry3) -> (Core<'_>, f64, f64) {
-    let size = f64::from(part.local_bounds().half_extents().length());
     match part {
-        Part::Hull(hull) => (Core::Hull(&hull.polyhedron, to), 0.0, size),
+        Part::Hull(hull) => (Core::Hull(&hull.polyhedron, to), 0.0, hull.polyhedron.size),
         Part::Ball(ball) => {
-            (Core::Point(to.apply(ball.center.as_dvec3())), ball.radius.into(), size)
+            let radius = f64::from(ball.radius);
+            (Core::Point(to.apply(ball.center.as_dvec3())), radius, radius)
         }
-        Part::Capsule(capsule) => (Core::Segment(capsule.core(&to)), capsule.radius.into(), size),
+        Part::Capsule(c) => {
+            let (radius, half) = (f64::from(c.radius), f64::from(c.half_height));
+            (Core::Segment(c.core(&to)), radius, radius + half)
+        }
     }
 }
