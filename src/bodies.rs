@@ -5,6 +5,7 @@ use std::sync::Arc;
 
 use bvol_narrow::Contact;
 use bvol_volumes::{Aabb, Obb, Pose, Sphere};
+use glam::DVec3;
 
 use crate::event::{ContactEvent, EventKind};
 use crate::{BodyId, BodyKind, Shape};
@@ -21,7 +22,15 @@ pub(crate) const BODIES_AHEAD: usize = 16;
 pub(crate) struct Bodies {
     pub(crate) shapes: Vec<Option<Arc<Shape>>>,
     pub(crate) generations: Vec<u32>,
+    /// Poses as the narrow phase and the bounds read them: positions
+    /// rounded to f32.
     pub(crate) poses: Vec<Pose>,
+    /// Positions as given, in f64 (those given in f32 exactly so).
+    pub(crate) positions: Vec<DVec3>,
+    /// Whether some position given was not an f32's: then bounds grow by
+    /// their positions' rounding, and pairs are tested on positions
+    /// relative to the first body's.
+    pub(crate) far: bool,
     pub(crate) kinds: Vec<BodyKind>,
     pub(crate) user_data: Vec<u64>,
     pub(crate) layers: Vec<u32>,
@@ -52,6 +61,7 @@ impl Bodies {
         self.shapes.push(None);
         self.generations.push(0);
         self.poses.push(Pose::IDENTITY);
+        self.positions.push(DVec3::ZERO);
         self.kinds.push(BodyKind::Dynamic);
         self.user_data.push(0);
         self.layers.push(0);

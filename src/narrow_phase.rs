@@ -3,8 +3,9 @@
 //! written as it is tested: runs of pairs on rayon tasks, their lists joined
 //! in order, so the events are the same on any number of threads.
 
-use bvol_narrow::{Contact, WarmStart, contact_within};
+use bvol_narrow::{Contact, ContactPoint, WarmStart, contact_within};
 use bvol_volumes::prefetch;
+use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
 use crate::BodyKind;
@@ -253,9 +254,50 @@ fn test_run(
 /// `margin`: the deepest contact over their pairs of convex parts (the
 /// nearest, when none touches), the normal from `a` to `b`.
 fn collide(bodies: &Bodies, a: u32, b: u32, margin: f32, state: &mut PairState) -> Option<Contact> {
+    let (contact, anchor) = anchored(bodies, a, b, margin, state)?;
+    if anchor == DVec3::ZERO {
+        return Some(contact);
+    }
+    let moved = |p: &ContactPoint| ContactPoint {
+        position: (anchor + p.position.as_dvec3()).as_vec3(),
+        depth: p.depth,
+    };
+    let points: Vec<ContactPoint> = contact.points().iter().map(moved).collect();
+    Some(Contact::new(contact.normal, contact.depth, &points))
+}
+
+/// [`collide`] tested cold, its points left relative to the anchor it
+/// returns (see [`anchored`]).
+pub(crate) fn anchored_contact(
+    bodies: &Bodies,
+    a: u32,
+    b: u32,
+    margin: f32,
+) -> Option<(Contact, DVec3)> {
+    anchored(bodies, a, b, margin, &mut PairState::default())
+}
+
+/// [`collide`]'s contact with its points relative to an anchor, and the
+/// anchor: the origin, or, in a world given positions that are not f32's,
+/// `a`'s f64 position, the pair then tested on `b`'s position relative to
+/// it (so as precisely wherever the pair is).
+fn anchored(
+    bodies: &Bodies,
+    a: u32,
+    b: u32,
+    margin: f32,
+    state: &mut PairState,
+) -> Option<(Contact, DVec3)> {
     let (a, b) = (a as usize, b as usize);
     let (shape_a, shape_b) = (bodies.shapes[a].as_ref()?, bodies.shapes[b].as_ref()?);
     let (parts_a, parts_b) = (shape_a.parts(), shape_b.parts());
+    let (mut pose_a, mut pose_b) = (bodies.poses[a], bodies.poses[b]);
+    let mut anchor = DVec3::ZERO;
+    if bodies.far {
+        anchor = bodies.positions[a];
+        pose_a.position = Vec3::ZERO;
+        pose_b.position = (bodies.positions[b] - anchor).as_vec3();
+    }
     let more = parts_a.len() * parts_b.len() - 1;
     if state.more.len() != more {
         state.more = vec![WarmStart::default(); more].into_boxed_slice();
@@ -269,12 +311,12 @@ fn collide(bodies: &Bodies, a: u32, b: u32, margin: f32, state: &mut PairState) 
             };
             // Poses were checked when set and the margin when the world was
             // made, so the tests cannot fail.
-            let found = contact_within(pa, &bodies.poses[a], pb, &bodies.poses[b], margin, cache);
+            let found = contact_within(pa, &pose_a, pb, &pose_b, margin, cache);
             let contact = found.ok().flatten();
             if let Some(c) = contact.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
                 deepest = Some(c);
             }
         }
     }
-    deepest
+    Some((deepest?, anchor))
 }

@@ -184,13 +184,17 @@ impl<B: Broadphase> World<B> {
             dirty.retain(|&s| b.shapes[s as usize].is_some());
         }
         // Half the margin a body, so that bodies within it of each other
-        // overlap: a pass of its own, which a world without one skips.
-        let pad = self.config.margin * 0.5;
-        if pad > 0.0 {
+        // overlap, and a position's f32 rounding, so that the bounds hold
+        // the body where its f64 position puts it: a pass of its own, which
+        // a world with neither skips.
+        let half = self.config.margin * 0.5;
+        if half > 0.0 || b.far {
             for &s in &dirty {
                 let i = s as usize;
+                let rounding = (b.positions[i] - b.poses[i].position.as_dvec3()).length();
+                let pad = (f64::from(half) + rounding) as f32;
                 let tight = WorldBounds { sphere: b.spheres[i], obb: b.obbs[i], aabb: b.leaves[i] };
-                let w = tight.grown(pad);
+                let w = tight.grown(pad.next_up());
                 (b.spheres[i], b.obbs[i], b.leaves[i]) = (w.sphere, w.obb, w.aabb);
             }
         }

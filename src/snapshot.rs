@@ -17,7 +17,7 @@ use std::fmt;
 use std::sync::Arc;
 
 use bvol_narrow::{Capsule, Contact, ContactPoint, HullPart, HullSource, Part};
-use bvol_volumes::{BodyBounds, ConvexHull, Obb, Pose, Sphere};
+use bvol_volumes::{BodyBounds, ConvexHull, DPose, Obb, Sphere};
 use glam::{DVec3, Vec3};
 use serde::{Deserialize, Serialize};
 
@@ -93,7 +93,8 @@ enum PartData {
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct BodyData {
     shape: usize,
-    position: Vec3,
+    /// As given: in f64.
+    position: DVec3,
     rotation: glam::Quat,
     kind: u8,
     user_data: u64,
@@ -197,11 +198,10 @@ impl World {
                         index.push((key, shapes.len() - 1));
                         shapes.len() - 1
                     });
-                    let pose = b.poses[i];
                     BodyData {
                         shape,
-                        position: pose.position,
-                        rotation: pose.rotation,
+                        position: b.positions[i],
+                        rotation: b.poses[i].rotation,
                         kind: kind_code(b.kinds[i]),
                         user_data: b.user_data[i],
                         layers: b.layers[i],
@@ -299,12 +299,13 @@ fn restore_slots(
             return Err(bad("a body in a slot with the generation of a free one (even)"));
         }
         let shape = shapes.get(body.shape).ok_or(bad("a body of a shape not in the snapshot"))?;
-        let pose = Pose::new(body.position, body.rotation);
+        let pose = DPose::new(body.position, body.rotation).to_pose();
         if !placeable(&pose) {
             return Err(bad("a pose a world cannot place a body at"));
         }
         b.shapes[i] = Some(shape.clone());
-        b.poses[i] = pose;
+        (b.poses[i], b.positions[i]) = (pose, body.position);
+        b.far |= pose.position.as_dvec3() != body.position;
         b.kinds[i] = kind_of(body.kind).ok_or(bad("a kind that is not 0, 1 or 2"))?;
         (b.user_data[i], b.layers[i], b.masks[i]) = (body.user_data, body.layers, body.mask);
         b.count += 1;

@@ -7,8 +7,8 @@ use std::sync::Arc;
 
 use bvol_narrow::Contact;
 use bvol_tree::Tree;
-use bvol_volumes::{Aabb, Obb, Pose, Ray, Sphere, prefetch};
-use glam::Vec3;
+use bvol_volumes::{Aabb, DPose, Obb, Pose, Ray, Sphere, prefetch};
+use glam::{DVec3, Vec3};
 use rayon::{ThreadPool, ThreadPoolBuilder};
 
 use crate::bodies::{BODIES_AHEAD, Bodies};
@@ -16,7 +16,7 @@ use crate::broadphase::Broadphase;
 use crate::config::WorldConfig;
 use crate::event::{ContactEvent, contact_of};
 use crate::limits::{MAX_COORDINATE, placeable};
-use crate::narrow_phase::PairStates;
+use crate::narrow_phase::{PairStates, anchored_contact};
 use crate::scratch::Scratch;
 use crate::stats::FrameStats;
 use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
@@ -141,6 +141,7 @@ impl<B: Broadphase> World<B> {
         let i = index as usize;
         b.generations[i] = generation;
         b.poses[i] = desc.pose;
+        b.positions[i] = desc.pose.position.as_dvec3();
         b.kinds[i] = desc.kind;
         b.user_data[i] = desc.user_data;
         b.layers[i] = desc.layers;
@@ -212,12 +213,92 @@ impl<B: Broadphase> World<B> {
             // A pose handed over unchanged moves nothing: the body's bounds
             // stay placed, and its pairs with bodies also unmoved keep their
             // answers untested.
-            if b.poses[id.index as usize] != pose {
-                b.poses[id.index as usize] = pose;
+            let i = id.index as usize;
+            let position = pose.position.as_dvec3();
+            if b.poses[i] != pose || b.positions[i] != position {
+                (b.poses[i], b.positions[i]) = (pose, position);
                 b.mark_dirty(id.index);
             }
         }
         Ok(())
+    }
+
+    /// Moves many bodies to poses whose positions are f64: for worlds that
+    /// reach far from the origin, where f32 steps are coarser than the
+    /// bodies (about 1e-3 at 1e4, 8 at 1e8). Checked as
+    /// [`set_poses`](Self::set_poses) checks (a position is checked as its
+    /// f32 rounding); on error nothing has moved.
+    ///
+    /// A pair is then tested on the second body's position relative to the
+    /// first's, taken in f64, so its contact is as precise wherever the
+    /// pair is (and [`contact_points_f64`](Self::contact_points_f64) gives
+    /// its points in f64). The bounds and the broadphase stay f32: each
+    /// body's bounds grow by its position's rounding, so no pair is missed,
+    /// but where f32 steps are much coarser than the bodies, their bounds
+    /// are that much larger and the broadphase passes on more pairs
+    /// (`World::stats` shows how many). Positions given in f32 are exact
+    /// in f64, and a world given only those works as before.
+    ///
+    /// ```
+    /// use std::sync::Arc;
+    /// use bvol::glam::{DVec3, Quat, Vec3};
+    /// use bvol::volumes::{DPose, Pose};
+    /// use bvol::{BodyDesc, Shape, World};
+    ///
+    /// let mut world = World::new();
+    /// let cube = Arc::new(Shape::cuboid(Vec3::splat(0.5))?);
+    /// let a = world.add_body(BodyDesc::new(cube.clone(), Pose::IDENTITY))?;
+    /// let b = world.add_body(BodyDesc::new(cube, Pose::IDENTITY))?;
+    /// let far = DVec3::new(1e8, -3e7, 5e6);
+    /// let poses = [far, far + DVec3::X * 0.9].map(|p| DPose::new(p, Quat::IDENTITY));
+    /// world.set_poses_f64(&[a, b], &poses)?;
+    /// world.update();
+    /// let contact = world.contact(a, b)?.expect("0.1 deep");
+    /// assert!((contact.depth - 0.1).abs() < 1e-5);
+    /// let points = world.contact_points_f64(a, b)?;
+    /// assert!(points.iter().all(|p| (p.x - (far.x + 0.45)).abs() < 1e-5));
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn set_poses_f64(&mut self, ids: &[BodyId], poses: &[DPose]) -> Result<(), WorldError> {
+        if ids.len() != poses.len() {
+            return Err(WorldError::LengthMismatch { bodies: ids.len(), poses: poses.len() });
+        }
+        for (&id, pose) in ids.iter().zip(poses) {
+            self.slot(id)?;
+            check_pose(id, &pose.to_pose())?;
+        }
+        let b = &mut self.bodies;
+        for (&id, pose) in ids.iter().zip(poses) {
+            let i = id.index as usize;
+            let rounded = pose.to_pose();
+            if b.poses[i] != rounded || b.positions[i] != pose.position {
+                (b.poses[i], b.positions[i]) = (rounded, pose.position);
+                b.far |= rounded.position.as_dvec3() != pose.position;
+                b.mark_dirty(id.index);
+            }
+        }
+        Ok(())
+    }
+
+    /// A body's pose with its position as given, in f64 (see
+    /// [`set_poses_f64`](Self::set_poses_f64)).
+    pub fn pose_f64(&self, id: BodyId) -> Result<DPose, WorldError> {
+        let i = self.slot(id)?;
+        Ok(DPose::new(self.bodies.positions[i], self.bodies.poses[i].rotation))
+    }
+
+    /// The points of bodies `a` and `b`'s contact at their poses now, in
+    /// f64: those of [`contact`](Self::contact)'s after an update, in the
+    /// same order, to the precision of the bodies' f64 positions (the
+    /// contact's own are f32). Empty if they are not in contact.
+    pub fn contact_points_f64(&self, a: BodyId, b: BodyId) -> Result<Vec<DVec3>, WorldError> {
+        let (i, j) = (self.slot(a)? as u32, self.slot(b)? as u32);
+        let (lo, hi) = (i.min(j), i.max(j));
+        let found = anchored_contact(&self.bodies, lo, hi, self.config.margin);
+        let points = found.map(|(contact, anchor)| {
+            contact.points().iter().map(|p| anchor + p.position.as_dvec3()).collect()
+        });
+        Ok(points.unwrap_or_default())
     }
 
     /// Changes how a body takes part: a sleeping or static body moves to

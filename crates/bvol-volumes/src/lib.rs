@@ -48,7 +48,7 @@ pub use hull::ConvexHull;
 pub use kdop::{Kdop, Kdop6, Kdop14, Kdop18, Kdop26};
 pub use obb::Obb;
 pub use placed::{BodyBounds, WorldBounds};
-pub use pose::Pose;
+pub use pose::{DPose, Pose};
 pub use prefetch::prefetch;
 pub use ray::Ray;
 pub use sphere::Sphere;

@@ -29,6 +29,42 @@ pub struct Pose {
     pub rotation: Quat,
 }
 
+/// A rigid pose whose position is f64: where a body far from the origin
+/// is, to the precision it needs (a world keeps its bodies' positions so;
+/// see bvol's `World::set_poses_f64`).
+///
+/// ```
+/// use bvol_volumes::DPose;
+/// use glam::{DVec3, Quat};
+/// let far = DPose::new(DVec3::new(1e8 + 0.25, 0.0, 0.0), Quat::IDENTITY);
+/// assert_eq!(far.to_pose().position.x, 1e8); // f32 steps are 8 there
+/// ```
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DPose {
+    /// Translation, applied after the rotation.
+    pub position: DVec3,
+    /// Rotation, as [`Pose::rotation`].
+    pub rotation: Quat,
+}
+
+impl DPose {
+    /// A pose from a position and a rotation.
+    pub const fn new(position: DVec3, rotation: Quat) -> Self {
+        DPose { position, rotation }
+    }
+
+    /// The pose with its position rounded to f32.
+    pub fn to_pose(self) -> Pose {
+        Pose::new(self.position.as_vec3(), self.rotation)
+    }
+}
+
+impl From<Pose> for DPose {
+    fn from(pose: Pose) -> Self {
+        DPose::new(pose.position.as_dvec3(), pose.rotation)
+    }
+}
+
 impl Default for Pose {
     fn default() -> Self {
         Self::IDENTITY
