@@ -25,7 +25,8 @@ pub(crate) struct Bodies {
     /// Poses as the narrow phase and the bounds read them: positions
     /// rounded to f32.
     pub(crate) poses: Vec<Pose>,
-    /// Positions as given, in f64 (those given in f32 exactly so).
+    /// Positions as given, in f64, kept once `far` (until then each is its
+    /// pose's, and the poses alone are written: see [`Bodies::position`]).
     pub(crate) positions: Vec<DVec3>,
     /// Whether some position given was not an f32's: then bounds grow by
     /// their positions' rounding, and pairs are tested on positions
@@ -77,6 +78,20 @@ impl Bodies {
     pub(crate) fn filters(&self, slot: u32) -> bool {
         let i = slot as usize;
         self.layers[i] == 0 || self.masks[i] != u32::MAX
+    }
+
+    /// The position of the body in `slot`, as given.
+    pub(crate) fn position(&self, slot: usize) -> DVec3 {
+        if self.far { self.positions[slot] } else { self.poses[slot].position.as_dvec3() }
+    }
+
+    /// Keeps the positions in f64 from now on, each its pose's so far.
+    pub(crate) fn go_far(&mut self) {
+        if !std::mem::replace(&mut self.far, true) {
+            for (position, pose) in self.positions.iter_mut().zip(&self.poses) {
+                *position = pose.position.as_dvec3();
+            }
+        }
     }
 
     /// Queues a slot for the next update's placing of world bounds.

@@ -191,7 +191,7 @@ impl<B: Broadphase> World<B> {
         if half > 0.0 || b.far {
             for &s in &dirty {
                 let i = s as usize;
-                let rounding = (b.positions[i] - b.poses[i].position.as_dvec3()).length();
+                let rounding = (b.position(i) - b.poses[i].position.as_dvec3()).length();
                 let pad = (f64::from(half) + rounding) as f32;
                 let tight = WorldBounds { sphere: b.spheres[i], obb: b.obbs[i], aabb: b.leaves[i] };
                 let w = tight.grown(pad.next_up());

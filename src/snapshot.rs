@@ -200,7 +200,7 @@ impl World {
                     });
                     BodyData {
                         shape,
-                        position: b.positions[i],
+                        position: b.position(i),
                         rotation: b.poses[i].rotation,
                         kind: kind_code(b.kinds[i]),
                         user_data: b.user_data[i],

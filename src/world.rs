@@ -204,6 +204,7 @@ impl<B: Broadphase> World<B> {
             check_pose(ids[k], &poses[k])?;
         }
         let b = &mut self.bodies;
+        let far = b.far;
         for (k, (&id, &pose)) in ids.iter().zip(poses).enumerate() {
             // Asked for ahead, the poses' slots (in any order the caller
             // likes) do not hold up the copy.
@@ -215,8 +216,11 @@ impl<B: Broadphase> World<B> {
             // answers untested.
             let i = id.index as usize;
             let position = pose.position.as_dvec3();
-            if b.poses[i] != pose || b.positions[i] != position {
-                (b.poses[i], b.positions[i]) = (pose, position);
+            if b.poses[i] != pose || (far && b.positions[i] != position) {
+                b.poses[i] = pose;
+                if far {
+                    b.positions[i] = position;
+                }
                 b.mark_dirty(id.index);
             }
         }
@@ -271,9 +275,14 @@ impl<B: Broadphase> World<B> {
         for (&id, pose) in ids.iter().zip(poses) {
             let i = id.index as usize;
             let rounded = pose.to_pose();
-            if b.poses[i] != rounded || b.positions[i] != pose.position {
-                (b.poses[i], b.positions[i]) = (rounded, pose.position);
-                b.far |= rounded.position.as_dvec3() != pose.position;
+            if rounded.position.as_dvec3() != pose.position {
+                b.go_far();
+            }
+            if b.poses[i] != rounded || (b.far && b.positions[i] != pose.position) {
+                b.poses[i] = rounded;
+                if b.far {
+                    b.positions[i] = pose.position;
+                }
                 b.mark_dirty(id.index);
             }
         }
@@ -284,7 +293,7 @@ impl<B: Broadphase> World<B> {
     /// [`set_poses_f64`](Self::set_poses_f64)).
     pub fn pose_f64(&self, id: BodyId) -> Result<DPose, WorldError> {
         let i = self.slot(id)?;
-        Ok(DPose::new(self.bodies.positions[i], self.bodies.poses[i].rotation))
+        Ok(DPose::new(self.bodies.position(i), self.bodies.poses[i].rotation))
     }
 
     /// The points of bodies `a` and `b`'s contact at their poses now, in
