@@ -11,13 +11,13 @@ use std::sync::Arc;
 
 use bvol::narrow::{Contact, WarmStart, collide_parts, contact_within};
 use bvol::volumes::Aabb;
-use bvol::volumes::{Pose, Ray};
+use bvol::volumes::{DPose, Pose, Ray};
 use bvol::{
     BodyDesc, BodyId, BodyKind, Broadphase, BruteForce, ContactEvent, EventKind, FitOptions,
     MeshProblem, Shape, ShapeError, World, WorldConfig, WorldError,
 };
 use common::{mesh, random_pose, shapes_of_size};
-use glam::{Quat, Vec3, Vec4};
+use glam::{DVec3, Quat, Vec3, Vec4};
 use proptest::prelude::*;
 use rand::rngs::SmallRng;
 use rand::{RngExt, SeedableRng};
@@ -74,7 +74,18 @@ fn brute_force(world: &World) -> BTreeSet<(u32, u32)> {
 /// Whether two bodies are in contact, part by part: touching, or apart
 /// within the world's margin.
 fn touch(world: &World, a: BodyId, b: BodyId) -> bool {
-    let (pa, pb) = (world.pose(a).unwrap(), world.pose(b).unwrap());
+    touch_at(world, a, b, false)
+}
+
+/// [`touch`], tested on `b`'s f64 position relative to `a`'s if
+/// `relative` (as a world given positions that are not f32's tests).
+fn touch_at(world: &World, a: BodyId, b: BodyId, relative: bool) -> bool {
+    let (mut pa, mut pb) = (world.pose(a).unwrap(), world.pose(b).unwrap());
+    if relative {
+        let (fa, fb) = (world.pose_f64(a).unwrap(), world.pose_f64(b).unwrap());
+        pa.position = Vec3::ZERO;
+        pb.position = (fb.position - fa.position).as_vec3();
+    }
     let (sa, sb) = (world.shape(a).unwrap(), world.shape(b).unwrap());
     let margin = world.config().margin;
     sa.parts().iter().any(|x| {
@@ -804,6 +815,9 @@ struct Model {
     live: Vec<(BodyId, (u32, u32))>,
     touching: BTreeSet<(BodyId, BodyId)>,
     removed: Vec<BodyId>,
+    /// Whether a position that is not an f32's was given: the world then
+    /// tests pairs on relative positions.
+    far: bool,
 }
 
 impl Model {
@@ -831,7 +845,7 @@ impl Model {
                     }
                     continue;
                 }
-                let touches = touch(world, a, b);
+                let touches = touch_at(world, a, b, self.far);
                 match (was, touches) {
                     (false, true) => events.insert((a, b, 0)),
                     (true, true) => events.insert((a, b, 1)),
@@ -856,8 +870,10 @@ proptest! {
     /// kind changes, single moves and moves of all at once, and saving and
     /// loading the world (with the `serde` feature), on a world
     /// small and dense enough that most bodies touch, scaled to sizes of
-    /// 1e-3, 1 and 1e3 and placed at the origin or 1e4 from it (where f32
-    /// steps, about 1e-3, are coarser than the shapes of size 1e-3), with
+    /// 1e-3, 1 and 1e3 and placed at the origin, 1e4 from it (where f32
+    /// steps, about 1e-3, are coarser than the shapes of size 1e-3) or 1e8
+    /// by f64 positions (`set_poses_f64`, the model then testing pairs on
+    /// relative positions as the world does, and no rays), with
     /// no margin or one of 5% of the size: after every update the events
     /// are exactly those of an all-pairs hull test (within the margin)
     /// against the pairs touching at the update before (resting pairs kept
@@ -870,13 +886,28 @@ proptest! {
     fn events_match_an_all_pairs_model_through_any_edits(
         ops in prop::collection::vec(any_op(), 1..40),
         size in prop::sample::select(vec![1e-3f32, 1.0, 1e3]),
-        far in prop::sample::select(vec![0.0f32, 1e4]),
+        far in prop::sample::select(vec![0.0f32, 1e4, 1e8]),
         margin in prop::sample::select(vec![0.0f32, 0.05]),
     ) {
-        // The whole world scaled by `size`, and moved `far` from the origin.
+        // The whole world scaled by `size`, and moved `far` from the origin:
+        // at 1e8 by f64 positions.
         let shapes = shapes_of_size(size);
+        let f64_poses = far >= 1e8;
         let at = |p: Vec3| p * size + Vec3::splat(far);
         let place = |p: Pose| Pose::new(at(p.position), p.rotation);
+        let at_f64 = |p: DVec3| p * f64::from(size) + DVec3::splat(f64::from(far));
+        // Moves bodies, by f64 positions at 1e8, telling the model when one
+        // is not an f32's.
+        let moves = |world: &mut World, model: &mut Model, ids: &[BodyId], poses: &[DPose]| {
+            if f64_poses {
+                model.far |= poses.iter().any(|p| p.to_pose().position.as_dvec3() != p.position);
+                world.set_poses_f64(ids, poses).unwrap();
+            } else {
+                let poses: Vec<Pose> = poses.iter().map(|p| p.to_pose()).collect();
+                world.set_poses(ids, &poses).unwrap();
+            }
+        };
+        let placed = |p: Pose| DPose::new(at_f64(p.position.as_dvec3()), p.rotation);
         let mut world = World::with_config(WorldConfig::default().with_margin(margin * size)).unwrap();
         let mut model = Model::default();
         // Each body's user data, distinct, kept after it is removed.
@@ -890,6 +921,7 @@ proptest! {
                     let data = 1_000_003 * users.len() as u64 + 17;
                     let desc = desc.with_kind(KINDS[kind]).with_filter(layers, mask);
                     let id = world.add_body(desc.with_user_data(data)).unwrap();
+                    moves(&mut world, &mut model, &[id], &[placed(pose)]);
                     model.live.push((id, (layers, mask)));
                     users.insert(id, data);
                 }
@@ -906,18 +938,20 @@ proptest! {
                     world.set_kind(pick(k, &model), KINDS[kind]).unwrap();
                 }
                 Op::Move(k, pose) if !model.live.is_empty() => {
-                    world.set_pose(pick(k, &model), place(pose)).unwrap();
+                    let id = pick(k, &model);
+                    moves(&mut world, &mut model, &[id], &[placed(pose)]);
                 }
                 Op::Nudge(d) => {
                     let ids: Vec<BodyId> = model.live.iter().map(|&(id, _)| id).collect();
-                    let poses: Vec<Pose> = ids
+                    let step = (d * size).as_dvec3();
+                    let poses: Vec<DPose> = ids
                         .iter()
                         .map(|&id| {
-                            let p = world.pose(id).unwrap();
-                            Pose::new(p.position + d * size, p.rotation)
+                            let p = world.pose_f64(id).unwrap();
+                            DPose::new(p.position + step, p.rotation)
                         })
                         .collect();
-                    world.set_poses(&ids, &poses).unwrap();
+                    moves(&mut world, &mut model, &ids, &poses);
                 }
                 Op::Sleep => {
                     for &(id, _) in &model.live {
@@ -952,7 +986,9 @@ proptest! {
                     prop_assert_eq!(set, model.expected(&world));
                     check_contacts(&world, &model, &users)?;
                     let (from, to) = (at(from), at(to));
-                    if let Some(ray) = (to - from).try_normalize().map(|d| Ray::new(from, d)) {
+                    // Rays are f32: at 1e8 their steps are coarser than the bodies.
+                    let ray = (to - from).try_normalize().filter(|_| !f64_poses);
+                    if let Some(ray) = ray.map(|d| Ray::new(from, d)) {
                         let ids = model.live.iter().map(|&(id, _)| id);
                         let want = nearest(&world, ids, &ray, 10.0 * size).map(|(t, _)| t);
                         let got = world.ray_cast(&ray, 10.0 * size).map(|h| h.t);
