@@ -1,17 +1,16 @@
 //! Snapshots (feature `serde`): a world saved as plain data in any serde
 //! format, and loaded back to run on exactly as the original would have.
 //!
-//! What a world's next updates read is saved: its settings, its shapes
-//! (each once, however many bodies share it; a hull part as its hull, from
-//! which its polyhedron is built again to the bit), its bodies and slots,
-//! the state of each pair (whether it was in contact, whether it was
-//! tested) and the last update's events and kept contacts. The rest is
-//! built again on loading: the bodies' world bounds and the broadphases
-//! (whose pairs are the same, in whatever tree order, and are sorted by
-//! slot before the narrow phase), and the warm starts, which speed a pair's
-//! test but never change its answer. So the first update after loading
-//! places every body and tests every pair cold: its events are the
-//! original's, its stats (bodies moved, time) are not.
+//! What a world's next updates and queries read is saved: its settings,
+//! its shapes (each once, however many bodies share it; a hull part as its
+//! hull, from which its polyhedron is built again to the bit), its bodies
+//! and slots with their world bounds as of the last update, which of them
+//! moved since, the state of each pair (whether it was in contact, whether
+//! it was tested) and the last update's events and kept contacts. The rest
+//! is built again on loading: the broadphases, from the saved boxes (their
+//! pairs are the same, in whatever tree order, and are sorted by slot
+//! before the narrow phase; their queries' order may differ), and the warm
+//! starts, which speed a pair's test but never change its answer.
 
 use std::fmt;
 use std::sync::Arc;
@@ -67,6 +66,11 @@ pub struct Snapshot {
     slots: Vec<(u32, Option<BodyData>)>,
     /// The free slots, the next taken last.
     free: Vec<u32>,
+    /// The bodies whose poses changed since the last update, in order.
+    dirty: Vec<u32>,
+    /// Whether the world tests pairs on relative f64 positions (once given
+    /// one that is not an f32's, it does from then on).
+    far: bool,
     /// `(lower slot, higher slot, in contact, tested)`, sorted.
     pairs: Vec<(u32, u32, bool, bool)>,
     events: Vec<EventData>,
@@ -100,6 +104,16 @@ struct BodyData {
     user_data: u64,
     layers: u32,
     mask: u32,
+    /// Its world sphere, OBB and box as of the last update, if it is in a
+    /// broadphase (placed since it was added or changed broadphase).
+    placed: Option<PlacedData>,
+}
+
+#[derive(Clone, Debug, Serialize, Deserialize)]
+struct PlacedData {
+    sphere: (Vec3, f32),
+    obb: (Vec3, [Vec3; 3], Vec3),
+    leaf: (Vec3, Vec3),
 }
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
@@ -206,6 +220,7 @@ impl World {
                         user_data: b.user_data[i],
                         layers: b.layers[i],
                         mask: b.masks[i],
+                        placed: self.broadphase_holds(i as u32).then(|| placed_data(b, i)),
                     }
                 });
                 (b.generations[i], body)
@@ -219,6 +234,8 @@ impl World {
             shapes,
             slots,
             free: b.free.clone(),
+            dirty: b.dirty.iter().copied().filter(|&s| b.shapes[s as usize].is_some()).collect(),
+            far: b.far,
             pairs: pairs.collect(),
             events: self.events.iter().map(event_data).collect(),
             orphaned: self.orphaned.iter().map(event_data).collect(),
@@ -245,6 +262,7 @@ impl World {
             })
             .collect::<Result<Vec<_>, _>>()?;
         restore_slots(&mut world, s, &shapes)?;
+        restore_broadphases(&mut world, s)?;
         let live = |slot: u32| world.bodies.shapes.get(slot as usize).is_some_and(Option::is_some);
         let mut pairs = Vec::with_capacity(s.pairs.len());
         for (k, &(x, y, in_contact, tested)) in s.pairs.iter().enumerate() {
@@ -255,8 +273,8 @@ impl World {
             pairs.push(((x, y), PairState { in_contact, tested, ..PairState::default() }));
         }
         let slots = world.bodies.shapes.len();
-        let events = events_of(&s.events, slots, 0)?;
-        let orphaned = events_of(&s.orphaned, slots, s.events.len())?;
+        let events = events_of(&s.events, slots, 0, true)?;
+        let orphaned = events_of(&s.orphaned, slots, s.events.len(), false)?;
         let mut rested = Vec::with_capacity(s.rested.len());
         for (k, (x, y, c)) in s.rested.iter().enumerate() {
             let event = s.events.len() + s.orphaned.len() + k;
@@ -278,6 +296,7 @@ fn restore_slots(
     shapes: &[Arc<Shape>],
 ) -> Result<(), SnapshotError> {
     let b = &mut world.bodies;
+    b.far = s.far;
     if s.slots.len() > <bvol_tree::Tree<bvol_volumes::Aabb> as crate::Broadphase>::ID_LIMIT as usize
     {
         return Err(SnapshotError::Slot {
@@ -305,12 +324,13 @@ fn restore_slots(
         }
         b.shapes[i] = Some(shape.clone());
         (b.poses[i], b.positions[i]) = (pose, body.position);
-        b.far |= pose.position.as_dvec3() != body.position;
+        if !s.far && pose.position.as_dvec3() != body.position {
+            return Err(bad("an f64 position that is not an f32's in a world that had none"));
+        }
         b.kinds[i] = kind_of(body.kind).ok_or(bad("a kind that is not 0, 1 or 2"))?;
         (b.user_data[i], b.layers[i], b.masks[i]) = (body.user_data, body.layers, body.mask);
         b.count += 1;
         b.filtering += usize::from(b.filters(i as u32));
-        b.mark_dirty(i as u32);
     }
     let mut seen = vec![false; s.slots.len()];
     for &slot in &s.free {
@@ -328,6 +348,61 @@ fn restore_slots(
     }
     b.free = s.free.clone();
     Ok(())
+}
+
+/// The saved bodies' bounds into `world`'s arrays and broadphases, and its
+/// moved bodies marked.
+fn restore_broadphases(world: &mut World, s: &Snapshot) -> Result<(), SnapshotError> {
+    let (mut moving, mut resting) = (Vec::new(), Vec::new());
+    for (i, (_, body)) in s.slots.iter().enumerate() {
+        let Some(placed) = body.as_ref().and_then(|body| body.placed.as_ref()) else { continue };
+        let bad = SnapshotError::Slot { slot: i, reason: "bounds that are not finite or empty" };
+        let (sphere, obb, leaf) = placed_of(placed).ok_or(bad)?;
+        let b = &mut world.bodies;
+        (b.spheres[i], b.obbs[i], b.leaves[i]) = (sphere, obb, leaf);
+        let list = if b.kinds[i] == BodyKind::Dynamic { &mut moving } else { &mut resting };
+        list.push((i as u32, leaf));
+    }
+    // Finite, ordered boxes of distinct live slots: a tree takes them.
+    world.moving.insert_many(&moving).ok();
+    world.resting.insert_many(&resting).ok();
+    for &slot in &s.dirty {
+        let b = &mut world.bodies;
+        let live = b.shapes.get(slot as usize).is_some_and(Option::is_some);
+        if !live || b.is_dirty[slot as usize] {
+            let reason = "the moved bodies name a free slot, or one twice";
+            return Err(SnapshotError::Slot { slot: slot as usize, reason });
+        }
+        b.mark_dirty(slot);
+    }
+    // A body in no broadphase enters one at the next update, as a new one.
+    for i in 0..s.slots.len() {
+        let b = &world.bodies;
+        if b.shapes[i].is_some() && !world.broadphase_holds(i as u32) && !b.is_dirty[i] {
+            world.bodies.mark_dirty(i as u32);
+        }
+    }
+    Ok(())
+}
+
+/// A placed body's saved bounds.
+fn placed_data(b: &crate::bodies::Bodies, i: usize) -> PlacedData {
+    let (sphere, obb, leaf) = (b.spheres[i], b.obbs[i], b.leaves[i]);
+    PlacedData {
+        sphere: (sphere.center, sphere.radius),
+        obb: (obb.center, [obb.axes.x_axis, obb.axes.y_axis, obb.axes.z_axis], obb.half_extents),
+        leaf: (leaf.min, leaf.max),
+    }
+}
+
+/// The bounds saved: finite, the box not empty.
+fn placed_of(p: &PlacedData) -> Option<(Sphere, Obb, bvol_volumes::Aabb)> {
+    let (center, [x, y, z], half_extents) = p.obb;
+    let (min, max) = p.leaf;
+    let floats = [p.sphere.0, center, x, y, z, half_extents, min, max, Vec3::splat(p.sphere.1)];
+    let ok = floats.iter().all(|v| v.is_finite()) && min.cmple(max).all();
+    let obb = Obb { center, axes: glam::Mat3::from_cols(x, y, z), half_extents };
+    ok.then(|| (Sphere::new(p.sphere.0, p.sphere.1), obb, bvol_volumes::Aabb::new(min, max)))
 }
 
 /// A shape's saved form.
@@ -465,13 +540,16 @@ fn contact_of(c: &ContactData) -> Option<Contact> {
         .then(|| Contact::new(c.normal, c.depth, &points))
 }
 
-/// Saved events, checked: sorted by slots, each pair's slots in order and
-/// within the world's, a contact on each that has not ended. `first` is the
-/// index the first has among all a snapshot's events, for errors.
+/// Saved events, checked: sorted by slots if `sorted` (the last update's;
+/// the removed bodies' come in the order of removal), each pair's slots in
+/// order and within the world's, a contact on each that has not ended.
+/// `first` is the index the first has among all a snapshot's events, for
+/// errors.
 fn events_of(
     saved: &[EventData],
     slots: usize,
     first: usize,
+    sorted: bool,
 ) -> Result<Vec<ContactEvent>, SnapshotError> {
     let mut events: Vec<ContactEvent> = Vec::with_capacity(saved.len());
     for (k, e) in saved.iter().enumerate() {
@@ -481,7 +559,7 @@ fn events_of(
         let contact = e.contact.as_ref().map(|c| contact_of(c).ok_or(bad.clone())).transpose()?;
         let ordered = events.last().is_none_or(|last| last.slots() <= (a.index, b.index));
         let within = a.index < b.index && (b.index as usize) < slots;
-        let Some(&kind) = kind.filter(|_| ordered && within) else { return Err(bad) };
+        let Some(&kind) = kind.filter(|_| (ordered || !sorted) && within) else { return Err(bad) };
         if contact.is_some() == (kind == EventKind::Ended) {
             return Err(bad);
         }

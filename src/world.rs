@@ -538,6 +538,12 @@ impl<B: Broadphase> World<B> {
         self.bodies.generations.get(id.index as usize) == Some(&id.generation)
     }
 
+    /// Whether a broadphase holds the body in `slot`: it was placed since
+    /// it was added or changed broadphase.
+    pub(crate) fn broadphase_holds(&self, slot: u32) -> bool {
+        self.moving.contains(slot) || self.resting.contains(slot)
+    }
+
     /// The broadphase that holds bodies of `kind`.
     pub(crate) fn broadphase_of(&mut self, kind: BodyKind) -> &mut B {
         if kind == BodyKind::Dynamic { &mut self.moving } else { &mut self.resting }

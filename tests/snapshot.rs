@@ -8,7 +8,7 @@ mod common;
 
 use std::sync::Arc;
 
-use bvol::volumes::Pose;
+use bvol::volumes::{Aabb, Pose, Ray};
 use bvol::{BodyDesc, BodyId, BodyKind, Shape, Snapshot, SnapshotError, World, WorldConfig};
 use common::{random_pose, shapes_of_size};
 use glam::{Quat, Vec3};
@@ -62,6 +62,14 @@ fn apply(world: &mut World, ops: &[Op], shapes: &[Arc<Shape>]) {
     }
 }
 
+/// The bodies whose boxes meet `region`, sorted.
+fn queried(world: &World, region: &Aabb) -> Vec<BodyId> {
+    let mut found = Vec::new();
+    world.query(region, |id| found.push(id));
+    found.sort();
+    found
+}
+
 /// A world saved as JSON and loaded back.
 fn reloaded(world: &World) -> World {
     let text = serde_json::to_string(&world.snapshot()).unwrap();
@@ -93,7 +101,17 @@ fn a_loaded_world_runs_on_with_the_same_events() {
             let ops = edits(&world, &mut rng, side, shapes.len());
             apply(&mut world, &ops, &shapes);
             if frame == save_at {
-                loaded = Some(reloaded(&world));
+                let copy = reloaded(&world);
+                // Before any update it answers queries as the original,
+                // from the bounds of the last update.
+                for k in 0..20 {
+                    let from = Vec3::new(-1.0, k as f32 * 0.6, 0.3 * k as f32);
+                    let ray = Ray::new(from, Vec3::new(1.0, 0.1, 0.05).normalize());
+                    assert_eq!(copy.ray_cast(&ray, 100.0), world.ray_cast(&ray, 100.0));
+                    let region = Aabb::new(from, from + Vec3::splat(2.0));
+                    assert_eq!(queried(&copy, &region), queried(&world, &region));
+                }
+                loaded = Some(copy);
             } else if let Some(copy) = loaded.as_mut() {
                 apply(copy, &ops, &shapes);
             }

@@ -2,7 +2,7 @@
 
 use arbitrary::{Result, Unstructured};
 use bvol::glam::{DVec3, Vec3};
-use bvol::narrow::{Collision, Pose, WarmStart, collide_parts};
+use bvol::narrow::{Collision, Pose, WarmStart, collide_parts, contact_within};
 use bvol::{MAX_COORDINATE, Part, ROTATION_LENGTH_SQUARED, Shape};
 
 use crate::checks::{finite, one_line_error, unit};
@@ -16,7 +16,8 @@ const MAX_HULL_POINTS: usize = 24;
 /// is finite, agrees with the parts' bounding spheres (apart beyond them
 /// means separated), and the other way round gives the same verdict unless
 /// the two are within rounding of touching; a touching pair's placed
-/// spheres and boxes (the World's culling tests) meet.
+/// spheres and boxes (the World's culling tests) meet; and within a margin
+/// the input's last float gives, the contact agrees (see [`within`]).
 pub fn run(data: &[u8]) {
     let u = &mut Unstructured::new(data);
     let (Ok(a), Ok(b)) = (shape(u), shape(u)) else { return };
@@ -35,6 +36,9 @@ pub fn run(data: &[u8]) {
     let placed = [Placed::new(&a, part_a, &pose_a), Placed::new(&b, part_b, &pose_b)];
     check(&forward, &placed);
     check(&backward, &[placed[1], placed[0]]);
+    if let Ok(margin) = floats::float(u) {
+        within(part_a, &pose_a, part_b, &pose_b, margin, &forward, &placed);
+    }
     if let Collision::Touching(_) = forward {
         bounds_meet(&a, &pose_a, &b, &pose_b);
     }
@@ -99,6 +103,40 @@ fn check(c: &Collision, [a, b]: &[Placed; 2]) {
                 assert!(at.distance(b.center) <= reach(b), "contact point {at} far from B");
             }
         }
+    }
+}
+
+/// The pair within `margin` (any float): a one-line error for a bad one;
+/// else a touching pair's contact as the pair table gave it, and an apart
+/// pair's, if any, within the margin and no nearer than the separating
+/// gap the pair table measured.
+fn within(
+    a: &Part,
+    pose_a: &Pose,
+    b: &Part,
+    pose_b: &Pose,
+    margin: f32,
+    forward: &Collision,
+    placed: &[Placed; 2],
+) {
+    let near = match contact_within(a, pose_a, b, pose_b, margin, &mut WarmStart::default()) {
+        Ok(near) => near,
+        Err(e) => return one_line_error(&e.to_string(), None),
+    };
+    let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
+    match (forward, near) {
+        (Collision::Touching(c), near) => {
+            assert_eq!(near.as_ref(), Some(c), "a touching pair within a margin");
+        }
+        (Collision::Separated { distance, .. }, Some(c)) => {
+            unit(c.normal, "a near contact's normal");
+            let d = -f64::from(c.depth);
+            assert!(d > 0.0 && d <= f64::from(margin), "near contact at {d}, margin {margin}");
+            let gap = f64::from(*distance);
+            assert!(d >= gap - slack, "a near contact at {d}, nearer than the gap {gap}");
+            c.points().iter().for_each(|p| finite(p.position, "a near contact's point"));
+        }
+        (Collision::Separated { .. }, None) => {}
     }
 }
 

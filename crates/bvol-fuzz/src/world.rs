@@ -4,9 +4,11 @@
 use std::sync::{Arc, OnceLock};
 
 use arbitrary::{Result, Unstructured};
-use bvol::glam::Vec3;
-use bvol::volumes::{Aabb, Pose, Ray};
-use bvol::{BodyDesc, BodyId, BodyKind, Broadphase, BruteForce, FrameStats, Shape, World};
+use bvol::glam::{DVec3, Vec3};
+use bvol::volumes::{Aabb, DPose, Pose, Ray};
+use bvol::{
+    BodyDesc, BodyId, BodyKind, Broadphase, BruteForce, FrameStats, Shape, Snapshot, World,
+};
 
 use crate::checks::{finite, one_line_error, unit};
 use crate::floats;
@@ -16,10 +18,12 @@ const MAX_OPS: usize = 256;
 
 const KINDS: [BodyKind; 3] = [BodyKind::Dynamic, BodyKind::Static, BodyKind::Sleeping];
 
-/// Runs the operations `data` spells on both worlds. After each: the same
+/// Runs the operations `data` spells on both worlds (poses in f32 and in
+/// f64, the tree world now and then saved and loaded). After each: the same
 /// answer from both (errors included, each one line, the body's pose left as
 /// it was); after each update, the same counts and events, finite contacts
-/// with unit normals, and the same ray hits and region queries.
+/// with unit normals, and the same ray hits and region queries. A snapshot
+/// with any number in it replaced loads or is refused in one line.
 pub fn run(data: &[u8]) {
     let u = &mut Unstructured::new(data);
     let mut pair = Pair { tree: World::new(), brute: World::<BruteForce>::default(), ids: vec![] };
@@ -39,9 +43,9 @@ struct Pair {
 
 impl Pair {
     fn step(&mut self, u: &mut Unstructured) -> Result<()> {
-        let op = u.int_in_range(0u8..=10)?;
+        let op = u.int_in_range(0u8..=13)?;
         // Edits of a body need one: the first is always an add.
-        let op = if self.ids.is_empty() && (3..=7).contains(&op) { 0 } else { op };
+        let op = if self.ids.is_empty() && matches!(op, 3..=7 | 11) { 0 } else { op };
         match op {
             0..=2 => {
                 let shape = u.choose(shapes())?.clone();
@@ -87,7 +91,22 @@ impl Pair {
             }
             8 => self.queries(u)?,
             9 => self.update(),
-            _ => self.add_cluster(u)?,
+            10 => self.add_cluster(u)?,
+            11 => {
+                let n = u.int_in_range(0..=self.ids.len())?;
+                let ids = (0..n).map(|_| self.pick(u)).collect::<Result<Vec<_>>>()?;
+                let poses = (0..n).map(|_| far_pose(u)).collect::<Result<Vec<_>>>()?;
+                let (tree, brute) =
+                    (self.tree.set_poses_f64(&ids, &poses), self.brute.set_poses_f64(&ids, &poses));
+                let _ = same(tree, brute);
+            }
+            // The tree world saved and loaded: it goes on as the brute-force
+            // one does.
+            12 => {
+                let loaded = World::from_snapshot(&self.tree.snapshot());
+                self.tree = loaded.expect("a world's own snapshot loads");
+            }
+            _ => corrupted(&self.tree, u)?,
         }
         Ok(())
     }
@@ -175,6 +194,54 @@ fn queried<B: Broadphase>(world: &World<B>, region: &Aabb) -> Vec<BodyId> {
     world.query(region, |id| found.push(id));
     found.sort();
     found
+}
+
+/// A pose with an f64 position: any f32 one moved by a multiple of an
+/// f64 step that no f32 has.
+fn far_pose(u: &mut Unstructured) -> Result<DPose> {
+    let step = DVec3::splat(f64::from(u.arbitrary::<i32>()?) * 0.377_777_777_777_777_7);
+    Ok(DPose::new(floats::position(u)?.as_dvec3() + step, floats::rotation(u)?))
+}
+
+/// Loads a copy of `world`'s snapshot with one number in it replaced: a
+/// world, which then updates, or a one-line error; never a panic.
+fn corrupted(world: &World, u: &mut Unstructured) -> Result<()> {
+    let mut value = serde_json::to_value(world.snapshot()).expect("a snapshot is JSON");
+    let mut numbers = Vec::new();
+    number_paths(&value, String::new(), &mut numbers);
+    let Ok(path) = u.choose(&numbers) else { return Ok(()) };
+    let number = if u.arbitrary()? {
+        serde_json::json!(u.arbitrary::<i64>()?)
+    } else {
+        serde_json::json!(f64::from(floats::float(u)?))
+    };
+    *value.pointer_mut(path).expect("a path found in it") = number;
+    let Ok(snapshot) = serde_json::from_value::<Snapshot>(value) else { return Ok(()) };
+    match World::from_snapshot(&snapshot) {
+        Ok(mut loaded) => {
+            loaded.update();
+        }
+        Err(e) => one_line_error(&e.to_string(), None),
+    }
+    Ok(())
+}
+
+/// The JSON pointers of every number in `value`, under `at`.
+fn number_paths(value: &serde_json::Value, at: String, out: &mut Vec<String>) {
+    match value {
+        serde_json::Value::Number(_) => out.push(at),
+        serde_json::Value::Array(items) => {
+            for (k, item) in items.iter().enumerate() {
+                number_paths(item, format!("{at}/{k}"), out);
+            }
+        }
+        serde_json::Value::Object(fields) => {
+            for (key, item) in fields {
+                number_paths(item, format!("{at}/{key}"), out);
+            }
+        }
+        _ => {}
+    }
 }
 
 fn pose(u: &mut Unstructured) -> Result<Pose> {
