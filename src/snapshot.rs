@@ -12,6 +12,7 @@
 //! before the narrow phase; their queries' order may differ), and the warm
 //! starts, which speed a pair's test but never change its answer.
 
+use std::collections::HashMap;
 use std::fmt;
 use std::sync::Arc;
 
@@ -201,15 +202,13 @@ impl World {
     pub fn snapshot(&self) -> Snapshot {
         let b = &self.bodies;
         let mut shapes: Vec<ShapeData> = Vec::new();
-        let mut index: Vec<(*const Shape, usize)> = Vec::new();
+        // Each shape once, by the address all its bodies share.
+        let mut index: HashMap<*const Shape, usize> = HashMap::new();
         let slots = (0..b.shapes.len())
             .map(|i| {
                 let body = b.shapes[i].as_ref().map(|shape| {
-                    let key = Arc::as_ptr(shape);
-                    let at = index.iter().find(|(k, _)| *k == key).map(|&(_, at)| at);
-                    let shape = at.unwrap_or_else(|| {
+                    let shape = *index.entry(Arc::as_ptr(shape)).or_insert_with(|| {
                         shapes.push(shape_data(shape));
-                        index.push((key, shapes.len() - 1));
                         shapes.len() - 1
                     });
                     BodyData {
@@ -288,8 +287,7 @@ impl World {
     }
 }
 
-/// The slots, their bodies and the free list into `world` (empty); every
-/// body is placed anew at the next update.
+/// The slots, their bodies and the free list into `world` (empty).
 fn restore_slots(
     world: &mut World,
     s: &Snapshot,
