@@ -3,7 +3,7 @@
 //! place, any other copied once into float32. Out: new arrays the caller
 //! owns.
 
-use bvol::glam::Vec3;
+use bvol::glam::{DVec3, Vec3};
 use numpy::ndarray::Ix2;
 use numpy::{
     PyArray1, PyArray2, PyArrayDyn, PyArrayMethods, PyReadonlyArrayDyn, PyUntypedArray,
@@ -47,13 +47,12 @@ impl Floats<'_> {
     }
 }
 
-/// Reads `obj`, named `name` in errors, as a float array of shape
-/// `(N, *tail)`.
-pub(crate) fn floats<'py>(
+/// `obj`, named `name` in errors, as an array of shape `(N, *tail)`.
+fn shaped<'a, 'py>(
     name: &str,
-    obj: &Bound<'py, PyAny>,
+    obj: &'a Bound<'py, PyAny>,
     tail: &[usize],
-) -> PyResult<Floats<'py>> {
+) -> PyResult<&'a Bound<'py, PyUntypedArray>> {
     let expected = shape_text(tail);
     let Ok(array) = obj.cast::<PyUntypedArray>() else {
         let given = obj.get_type().name()?;
@@ -68,6 +67,25 @@ pub(crate) fn floats<'py>(
             tuple_text(shape)
         )));
     }
+    Ok(array)
+}
+
+/// The error for an array of neither float dtype.
+fn not_floats(name: &str, array: &Bound<'_, PyUntypedArray>) -> PyErr {
+    PyTypeError::new_err(format!(
+        "{name}: expected float32 or float64 values, got {}",
+        array.dtype()
+    ))
+}
+
+/// Reads `obj`, named `name` in errors, as a float array of shape
+/// `(N, *tail)`.
+pub(crate) fn floats<'py>(
+    name: &str,
+    obj: &Bound<'py, PyAny>,
+    tail: &[usize],
+) -> PyResult<Floats<'py>> {
+    let array = shaped(name, obj, tail)?;
     if let Ok(array) = obj.cast::<PyArrayDyn<f32>>() {
         let array = array.readonly();
         if array.is_c_contiguous() {
@@ -78,10 +96,21 @@ pub(crate) fn floats<'py>(
     if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
         return Ok(Floats::Copied(copied(&array.readonly(), narrow)));
     }
-    Err(PyTypeError::new_err(format!(
-        "{name}: expected float32 or float64 values, got {}",
-        array.dtype()
-    )))
+    Err(not_floats(name, array))
+}
+
+/// Reads `obj`, named `name` in errors, as an `(N, 3)` float array, each
+/// row in f64 (float32 values widened exactly).
+pub(crate) fn vectors_f64(name: &str, obj: &Bound<'_, PyAny>) -> PyResult<Vec<DVec3>> {
+    let array = shaped(name, obj, &[3])?;
+    let values = if let Ok(array) = obj.cast::<PyArrayDyn<f64>>() {
+        copied(&array.readonly(), |v| v)
+    } else if let Ok(array) = obj.cast::<PyArrayDyn<f32>>() {
+        copied(&array.readonly(), f64::from)
+    } else {
+        return Err(not_floats(name, array));
+    };
+    Ok(values.as_chunks::<3>().0.iter().map(|&v| DVec3::from_array(v)).collect())
 }
 
 /// An `(N, 3)` array of points or vectors.
@@ -105,10 +134,10 @@ pub(crate) fn same_rows(names: &[&str], rows: &[usize]) -> PyResult<usize> {
 /// array is C-ordered, else through a two-dimensional view where it has
 /// two dimensions (an n-dimensional iterator pays for its generality on
 /// every value).
-fn copied<T: numpy::Element + Copy>(
+fn copied<T: numpy::Element + Copy, U>(
     array: &PyReadonlyArrayDyn<'_, T>,
-    f: impl Fn(T) -> f32,
-) -> Vec<f32> {
+    f: impl Fn(T) -> U,
+) -> Vec<U> {
     // `as_slice` also takes a Fortran-ordered array, in its memory order.
     if let (true, Ok(values)) = (array.is_c_contiguous(), array.as_slice()) {
         return values.iter().map(|&v| f(v)).collect();

@@ -4,7 +4,7 @@ use std::sync::Arc;
 
 use bvol::glam::{Quat, Vec3};
 use bvol::narrow::MAX_POINTS;
-use bvol::volumes::Pose;
+use bvol::volumes::{DPose, Pose};
 use bvol::{
     BodyDesc, BodyId, BodyKind, EventKind, FrameStats, Shape, Snapshot, World, WorldConfig,
     WorldError,
@@ -14,7 +14,9 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyBytes, PyDict, PyTuple};
 
-use crate::arrays::{Array1, floats, integers, rows_array, same_rows, vector_array, vectors};
+use crate::arrays::{
+    Array1, floats, integers, rows_array, same_rows, vector_array, vectors, vectors_f64,
+};
 use crate::batch::{check_max_t, rays};
 use crate::errors::{value_error, world_error};
 use crate::shape::PyShape;
@@ -147,6 +149,57 @@ impl PyWorld {
         same_rows(&["ids", "positions"], &[ids.len(), poses.len()])?;
         let world = &mut self.world;
         py.detach(|| world.set_poses(&ids, &poses)).map_err(world_error)
+    }
+
+    /// Moves bodies to positions kept in f64 (`World::set_poses_f64`), for
+    /// worlds far from the origin: `positions` an (N, 3) float64 array
+    /// (float32 is widened), `quaternions` as `set_poses` takes them. Pairs
+    /// are then tested on positions relative to one of their bodies; if
+    /// any pose is refused, none is set.
+    #[pyo3(signature = (ids, positions, quaternions = None))]
+    fn set_poses_f64(
+        &mut self,
+        py: Python<'_>,
+        ids: &Bound<'_, PyAny>,
+        positions: &Bound<'_, PyAny>,
+        quaternions: Option<&Bound<'_, PyAny>>,
+    ) -> PyResult<()> {
+        let ids: Vec<BodyId> = integers("ids", ids)?.into_iter().map(BodyId::from_bits).collect();
+        let positions = vectors_f64("positions", positions)?;
+        let rotations = rotations_of(quaternions, positions.len())?;
+        same_rows(&["ids", "positions"], &[ids.len(), positions.len()])?;
+        let poses: Vec<DPose> =
+            positions.into_iter().zip(rotations).map(|(p, q)| DPose::new(p, q)).collect();
+        let world = &mut self.world;
+        py.detach(|| world.set_poses_f64(&ids, &poses)).map_err(world_error)
+    }
+
+    /// The body's position as given, a (3,) float64 array, and its
+    /// quaternion, a (4,) float32 array.
+    fn pose_f64<'py>(
+        &self,
+        py: Python<'py>,
+        id: u64,
+    ) -> PyResult<(Array1<'py, f64>, Array1<'py, f32>)> {
+        let pose = self.world.pose_f64(BodyId::from_bits(id)).map_err(world_error)?;
+        Ok((
+            PyArray1::from_slice(py, &pose.position.to_array()),
+            PyArray1::from_slice(py, &pose.rotation.to_array()),
+        ))
+    }
+
+    /// The points of `a` and `b`'s contact at their poses now, a (K, 3)
+    /// float64 array (those of `contact`, as precise as f64 positions).
+    fn contact_points_f64<'py>(
+        &self,
+        py: Python<'py>,
+        a: u64,
+        b: u64,
+    ) -> PyResult<Bound<'py, PyArray2<f64>>> {
+        let (a, b) = (BodyId::from_bits(a), BodyId::from_bits(b));
+        let points = self.world.contact_points_f64(a, b).map_err(world_error)?;
+        let rows: Vec<[f64; 3]> = points.iter().map(|p| p.to_array()).collect();
+        Ok(rows_array(py, &rows))
     }
 
     /// The body's pose: its position, a (3,) float32 array, and its
@@ -442,15 +495,16 @@ fn poses_of(
 ) -> PyResult<Vec<Pose>> {
     let positions = vectors("positions", positions)?;
     let positions = positions.vectors();
-    let Some(quaternions) = quaternions else {
-        return Ok(positions.iter().map(|&p| Pose::new(p, Quat::IDENTITY)).collect());
-    };
+    let rotations = rotations_of(quaternions, positions.len())?;
+    Ok(positions.iter().zip(rotations).map(|(&p, q)| Pose::new(p, q)).collect())
+}
+
+/// The rotations of `n` poses: an `(n, 4)` array of quaternions (x, y, z,
+/// w), or the identity for each when there is none.
+fn rotations_of(quaternions: Option<&Bound<'_, PyAny>>, n: usize) -> PyResult<Vec<Quat>> {
+    let Some(quaternions) = quaternions else { return Ok(vec![Quat::IDENTITY; n]) };
     let quaternions = floats("quaternions", quaternions, &[4])?;
     let quaternions = quaternions.rows::<4>();
-    same_rows(&["positions", "quaternions"], &[positions.len(), quaternions.len()])?;
-    Ok(positions
-        .iter()
-        .zip(quaternions)
-        .map(|(&p, &q)| Pose::new(p, Quat::from_array(q)))
-        .collect())
+    same_rows(&["positions", "quaternions"], &[n, quaternions.len()])?;
+    Ok(quaternions.iter().map(|&q| Quat::from_array(q)).collect())
 }

@@ -168,6 +168,29 @@ def test_a_saved_world_runs_on_with_the_same_events():
             bvol.World.from_snapshot(bad)
 
 
+def test_far_worlds_keep_positions_and_contacts_in_float64():
+    offset = np.array([1e8, -3e7, 5e6])
+    worlds = []
+    for at in (np.zeros(3), offset):
+        world = bvol.World()
+        ids = world.add_bodies(np.zeros((2, 3), dtype=np.float32), primitive=("box", (0.5, 0.5, 0.5)))
+        world.set_poses_f64(ids, np.array([at, at + [0.9, 0.0, 0.0]]))
+        world.update()
+        worlds.append((world, ids))
+    (near, ids), (far, _) = worlds
+    a, b = int(ids[0]), int(ids[1])
+    position, _ = far.pose_f64(b)
+    assert position.dtype == np.float64 and np.array_equal(position, offset + [0.9, 0.0, 0.0])
+    assert np.isclose(far.contact(a, b)["depth"], 0.1, atol=1e-5)
+    assert np.isclose(far.contact(a, b)["depth"], near.contact(a, b)["depth"], atol=1e-6)
+    points = far.contact_points_f64(a, b) - offset
+    assert points.dtype == np.float64 and len(points) == 4
+    np.testing.assert_allclose(points, near.contact_points_f64(a, b), atol=1e-6)
+    with pytest.raises(ValueError):
+        far.set_poses_f64(ids, np.full((2, 3), np.nan))
+    assert np.array_equal(far.pose_f64(b)[0], position)
+
+
 def test_contacts_of_two_balls_are_the_exact_ones():
     world = bvol.World()
     a = world.add_body(primitive=("sphere", 1.0), pose=((0, 0, 0), (0, 0, 0, 1)))

@@ -223,6 +223,14 @@ class World:
         """Moves bodies; if any pose is refused, none is set."""
     def pose(self, id: int) -> Tuple[npt.NDArray[np.float32], npt.NDArray[np.float32]]:
         """The body's position and quaternion (x, y, z, w)."""
+    def set_poses_f64(
+        self, ids: _IntArray, positions: _FloatArray, quaternions: Optional[_FloatArray] = None
+    ) -> None:
+        """Moves bodies to positions kept in float64; if any pose is refused, none is set."""
+    def pose_f64(self, id: int) -> Tuple[npt.NDArray[np.float64], npt.NDArray[np.float32]]:
+        """The body's position as given (float64) and its quaternion (x, y, z, w)."""
+    def contact_points_f64(self, a: int, b: int) -> npt.NDArray[np.float64]:
+        """The points of a and b's contact at their poses now, a (K, 3) float64 array."""
     def set_kind(self, id: int, kind: str) -> None:
         """Makes the body "dynamic", "static" or "sleeping"."""
     def kind(self, id: int) -> str:
