@@ -38,6 +38,14 @@
 //! [`World::contacts`] lists the pairs touching at the last update, with
 //! their contacts, and [`World::contact`] answers for one pair.
 //!
+//! A world made with a [`margin`](WorldConfig::margin) also reports bodies
+//! apart by at most that distance, with negative depths (what a solver's
+//! speculative contacts need). Far from the origin, poses go in with f64
+//! positions ([`World::set_poses_f64`]) and pairs are tested on positions
+//! relative to one of their bodies. With the `serde` feature,
+//! `World::snapshot` saves a world and `World::from_snapshot` loads it
+//! to run on event for event.
+//!
 //! The vectors and quaternions are [`glam`]'s, re-exported as `bvol::glam`
 //! so that a user's glam is the one bvol was built with.
 //!

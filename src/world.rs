@@ -540,6 +540,7 @@ impl<B: Broadphase> World<B> {
 
     /// Whether a broadphase holds the body in `slot`: it was placed since
     /// it was added or changed broadphase.
+    #[cfg(feature = "serde")]
     pub(crate) fn broadphase_holds(&self, slot: u32) -> bool {
         self.moving.contains(slot) || self.resting.contains(slot)
     }
