@@ -85,6 +85,22 @@ impl Bodies {
         if self.far { self.positions[slot] } else { self.poses[slot].position.as_dvec3() }
     }
 
+    /// Moves the body in `slot` to `pose`, its position as given being
+    /// `position` (the pose's own, or one that rounds to it), and queues it
+    /// to be placed, unless neither changed: a pose handed over unchanged
+    /// moves nothing, so the body's bounds stay placed and its pairs with
+    /// bodies also unmoved keep their answers untested.
+    #[inline]
+    pub(crate) fn move_to(&mut self, slot: usize, pose: Pose, position: DVec3) {
+        if self.poses[slot] != pose || (self.far && self.positions[slot] != position) {
+            self.poses[slot] = pose;
+            if self.far {
+                self.positions[slot] = position;
+            }
+            self.mark_dirty(slot as u32);
+        }
+    }
+
     /// Keeps the positions in f64 from now on, each its pose's so far.
     pub(crate) fn go_far(&mut self) {
         if !std::mem::replace(&mut self.far, true) {

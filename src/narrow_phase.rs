@@ -258,12 +258,16 @@ fn collide(bodies: &Bodies, a: u32, b: u32, margin: f32, state: &mut PairState) 
     if anchor == DVec3::ZERO {
         return Some(contact);
     }
-    let moved = |p: &ContactPoint| ContactPoint {
-        position: (anchor + p.position.as_dvec3()).as_vec3(),
-        depth: p.depth,
-    };
-    let points: Vec<ContactPoint> = contact.points().iter().map(moved).collect();
+    let placed = points_at(&contact, anchor).zip(contact.points());
+    let points: Vec<ContactPoint> = placed
+        .map(|(position, p)| ContactPoint { position: position.as_vec3(), depth: p.depth })
+        .collect();
     Some(Contact::new(contact.normal, contact.depth, &points))
+}
+
+/// A contact's points, found relative to `anchor`, where they are.
+pub(crate) fn points_at(contact: &Contact, anchor: DVec3) -> impl Iterator<Item = DVec3> + '_ {
+    contact.points().iter().map(move |p| anchor + p.position.as_dvec3())
 }
 
 /// [`collide`] tested cold, its points left relative to the anchor it

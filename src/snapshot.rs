@@ -17,8 +17,8 @@ use std::fmt;
 use std::sync::Arc;
 
 use bvol_narrow::{Capsule, Contact, ContactPoint, HullPart, HullSource, Part};
-use bvol_volumes::{BodyBounds, ConvexHull, DPose, Obb, Sphere};
-use glam::{DVec3, Vec3};
+use bvol_volumes::{Aabb, BodyBounds, ConvexHull, DPose, Obb, Sphere};
+use glam::{DVec3, Mat3, Vec3};
 use serde::{Deserialize, Serialize};
 
 use crate::event::{ContactEvent, EventKind};
@@ -79,11 +79,16 @@ pub struct Snapshot {
     rested: Vec<(u32, u32, ContactData)>,
 }
 
+/// A sphere saved: its centre and radius.
+type SphereData = (Vec3, f32);
+/// An OBB saved: its centre, axes and half extents.
+type ObbData = (Vec3, Mat3, Vec3);
+
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct ShapeData {
     parts: Vec<PartData>,
-    sphere: (Vec3, f32),
-    obb: (Vec3, [Vec3; 3], Vec3),
+    sphere: SphereData,
+    obb: ObbData,
     fit: (String, String),
 }
 
@@ -112,8 +117,8 @@ struct BodyData {
 
 #[derive(Clone, Debug, Serialize, Deserialize)]
 struct PlacedData {
-    sphere: (Vec3, f32),
-    obb: (Vec3, [Vec3; 3], Vec3),
+    sphere: SphereData,
+    obb: ObbData,
     leaf: (Vec3, Vec3),
 }
 
@@ -295,8 +300,7 @@ fn restore_slots(
 ) -> Result<(), SnapshotError> {
     let b = &mut world.bodies;
     b.far = s.far;
-    if s.slots.len() > <bvol_tree::Tree<bvol_volumes::Aabb> as crate::Broadphase>::ID_LIMIT as usize
-    {
+    if s.slots.len() > <bvol_tree::Tree<Aabb> as crate::Broadphase>::ID_LIMIT as usize {
         return Err(SnapshotError::Slot {
             slot: s.slots.len(),
             reason: "more slots than a world has",
@@ -373,45 +377,62 @@ fn restore_broadphases(world: &mut World, s: &Snapshot) -> Result<(), SnapshotEr
         }
         b.mark_dirty(slot);
     }
-    // A body in no broadphase enters one at the next update, as a new one.
-    for i in 0..s.slots.len() {
-        let b = &world.bodies;
-        if b.shapes[i].is_some() && !world.broadphase_holds(i as u32) && !b.is_dirty[i] {
-            world.bodies.mark_dirty(i as u32);
-        }
+    // A body in no broadphase was added or changed broadphase since the
+    // last update: it is among the moved ones.
+    let b = &world.bodies;
+    if let Some(slot) = (0..s.slots.len())
+        .find(|&i| b.shapes[i].is_some() && !b.is_dirty[i] && !world.broadphase_holds(i as u32))
+    {
+        let reason = "a body with no bounds that did not move since the last update";
+        return Err(SnapshotError::Slot { slot, reason });
     }
     Ok(())
 }
 
 /// A placed body's saved bounds.
 fn placed_data(b: &crate::bodies::Bodies, i: usize) -> PlacedData {
-    let (sphere, obb, leaf) = (b.spheres[i], b.obbs[i], b.leaves[i]);
+    let leaf = b.leaves[i];
     PlacedData {
-        sphere: (sphere.center, sphere.radius),
-        obb: (obb.center, [obb.axes.x_axis, obb.axes.y_axis, obb.axes.z_axis], obb.half_extents),
+        sphere: sphere_data(&b.spheres[i]),
+        obb: obb_data(&b.obbs[i]),
         leaf: (leaf.min, leaf.max),
     }
 }
 
 /// The bounds saved: finite, the box not empty.
-fn placed_of(p: &PlacedData) -> Option<(Sphere, Obb, bvol_volumes::Aabb)> {
-    let (center, [x, y, z], half_extents) = p.obb;
+fn placed_of(p: &PlacedData) -> Option<(Sphere, Obb, Aabb)> {
+    let (sphere, obb) = (sphere_of(p.sphere)?, obb_of(p.obb)?);
     let (min, max) = p.leaf;
-    let floats = [p.sphere.0, center, x, y, z, half_extents, min, max, Vec3::splat(p.sphere.1)];
-    let ok = floats.iter().all(|v| v.is_finite()) && min.cmple(max).all();
-    let obb = Obb { center, axes: glam::Mat3::from_cols(x, y, z), half_extents };
-    ok.then(|| (Sphere::new(p.sphere.0, p.sphere.1), obb, bvol_volumes::Aabb::new(min, max)))
+    let box_ok = min.is_finite() && max.is_finite() && min.cmple(max).all();
+    box_ok.then(|| (sphere, obb, Aabb::new(min, max)))
+}
+
+fn sphere_data(sphere: &Sphere) -> SphereData {
+    (sphere.center, sphere.radius)
+}
+
+fn obb_data(obb: &Obb) -> ObbData {
+    (obb.center, obb.axes, obb.half_extents)
+}
+
+/// A saved sphere, if finite.
+fn sphere_of((center, radius): SphereData) -> Option<Sphere> {
+    (center.is_finite() && radius.is_finite()).then(|| Sphere::new(center, radius))
+}
+
+/// A saved OBB, if finite.
+fn obb_of((center, axes, half_extents): ObbData) -> Option<Obb> {
+    let finite = center.is_finite() && axes.is_finite() && half_extents.is_finite();
+    finite.then_some(Obb { center, axes, half_extents })
 }
 
 /// A shape's saved form.
 fn shape_data(shape: &Shape) -> ShapeData {
-    let bounds = shape.bounds();
-    let Obb { center, axes, half_extents } = bounds.obb;
     let fit = shape.fit_options();
     ShapeData {
         parts: shape.parts().iter().map(part_data).collect(),
-        sphere: (bounds.sphere.center, bounds.sphere.radius),
-        obb: (center, [axes.x_axis, axes.y_axis, axes.z_axis], half_extents),
+        sphere: sphere_data(&shape.sphere()),
+        obb: obb_data(&shape.obb()),
         fit: (fit.sphere.name().to_owned(), fit.obb.name().to_owned()),
     }
 }
@@ -447,12 +468,14 @@ fn hull_data(h: &ConvexHull) -> PartData {
 /// The shape a saved form describes, its bounds as saved.
 fn shape_of(data: &ShapeData) -> Result<Shape, String> {
     let parts = data.parts.iter().map(part_of).collect::<Result<Vec<_>, _>>()?;
-    let sphere = Sphere::new(data.sphere.0, data.sphere.1);
-    let (center, [x, y, z], half_extents) = data.obb;
-    let obb = Obb { center, axes: glam::Mat3::from_cols(x, y, z), half_extents };
-    let floats = [sphere.center, obb.center, x, y, z, half_extents, Vec3::splat(sphere.radius)];
-    if parts.is_empty() || !floats.iter().all(|&v| within_limit(v) && v.is_finite()) {
-        return Err("no parts, or bounds that are not finite".into());
+    let bad = || "no parts, or bounds that are not finite".to_string();
+    let (sphere, obb) = sphere_of(data.sphere).zip(obb_of(data.obb)).ok_or_else(bad)?;
+    let Mat3 { x_axis, y_axis, z_axis } = obb.axes;
+    let coordinates = [sphere.center, Vec3::splat(sphere.radius), obb.center, obb.half_extents];
+    if parts.is_empty()
+        || !coordinates.into_iter().chain([x_axis, y_axis, z_axis]).all(within_limit)
+    {
+        return Err(bad());
     }
     let sphere_method = data.fit.0.parse().map_err(|e| format!("{e}"))?;
     let obb_method = data.fit.1.parse().map_err(|e| format!("{e}"))?;

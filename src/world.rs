@@ -16,7 +16,7 @@ use crate::broadphase::Broadphase;
 use crate::config::WorldConfig;
 use crate::event::{ContactEvent, contact_of};
 use crate::limits::{MAX_COORDINATE, placeable};
-use crate::narrow_phase::{PairStates, anchored_contact};
+use crate::narrow_phase::{PairStates, anchored_contact, points_at};
 use crate::scratch::Scratch;
 use crate::stats::FrameStats;
 use crate::{BodyDesc, BodyId, BodyKind, Shape, WorldError};
@@ -204,25 +204,13 @@ impl<B: Broadphase> World<B> {
             check_pose(ids[k], &poses[k])?;
         }
         let b = &mut self.bodies;
-        let far = b.far;
         for (k, (&id, &pose)) in ids.iter().zip(poses).enumerate() {
             // Asked for ahead, the poses' slots (in any order the caller
             // likes) do not hold up the copy.
             if let Some(later) = ids.get(k + BODIES_AHEAD) {
                 prefetch(&b.poses[later.index as usize]);
             }
-            // A pose handed over unchanged moves nothing: the body's bounds
-            // stay placed, and its pairs with bodies also unmoved keep their
-            // answers untested.
-            let i = id.index as usize;
-            let position = pose.position.as_dvec3();
-            if b.poses[i] != pose || (far && b.positions[i] != position) {
-                b.poses[i] = pose;
-                if far {
-                    b.positions[i] = position;
-                }
-                b.mark_dirty(id.index);
-            }
+            b.move_to(id.index as usize, pose, pose.position.as_dvec3());
         }
         Ok(())
     }
@@ -273,18 +261,11 @@ impl<B: Broadphase> World<B> {
         }
         let b = &mut self.bodies;
         for (&id, pose) in ids.iter().zip(poses) {
-            let i = id.index as usize;
             let rounded = pose.to_pose();
             if rounded.position.as_dvec3() != pose.position {
                 b.go_far();
             }
-            if b.poses[i] != rounded || (b.far && b.positions[i] != pose.position) {
-                b.poses[i] = rounded;
-                if b.far {
-                    b.positions[i] = pose.position;
-                }
-                b.mark_dirty(id.index);
-            }
+            b.move_to(id.index as usize, rounded, pose.position);
         }
         Ok(())
     }
@@ -304,10 +285,7 @@ impl<B: Broadphase> World<B> {
         let (i, j) = (self.slot(a)? as u32, self.slot(b)? as u32);
         let (lo, hi) = (i.min(j), i.max(j));
         let found = anchored_contact(&self.bodies, lo, hi, self.config.margin);
-        let points = found.map(|(contact, anchor)| {
-            contact.points().iter().map(|p| anchor + p.position.as_dvec3()).collect()
-        });
-        Ok(points.unwrap_or_default())
+        Ok(found.map_or_else(Vec::new, |(contact, anchor)| points_at(&contact, anchor).collect()))
     }
 
     /// Changes how a body takes part: a sleeping or static body moves to
