@@ -144,7 +144,7 @@ impl PyWorld {
         positions: &Bound<'_, PyAny>,
         quaternions: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let ids: Vec<BodyId> = integers("ids", ids)?.into_iter().map(BodyId::from_bits).collect();
+        let ids = body_ids(ids)?;
         let poses = poses_of(positions, quaternions)?;
         same_rows(&["ids", "positions"], &[ids.len(), poses.len()])?;
         let world = &mut self.world;
@@ -164,7 +164,7 @@ impl PyWorld {
         positions: &Bound<'_, PyAny>,
         quaternions: Option<&Bound<'_, PyAny>>,
     ) -> PyResult<()> {
-        let ids: Vec<BodyId> = integers("ids", ids)?.into_iter().map(BodyId::from_bits).collect();
+        let ids = body_ids(ids)?;
         let positions = vectors_f64("positions", positions)?;
         let rotations = rotations_of(quaternions, positions.len())?;
         same_rows(&["ids", "positions"], &[ids.len(), positions.len()])?;
@@ -485,6 +485,11 @@ fn pose_of(pose: &Bound<'_, PyAny>) -> PyResult<Pose> {
         PyTypeError::new_err("pose: expected (position, quaternion): three numbers and four")
     })?;
     Ok(Pose::new(Vec3::from_array(position), Quat::from_array(rotation)))
+}
+
+/// The bodies named by an (N,) integer array of ids.
+fn body_ids(ids: &Bound<'_, PyAny>) -> PyResult<Vec<BodyId>> {
+    Ok(integers("ids", ids)?.into_iter().map(BodyId::from_bits).collect())
 }
 
 /// Poses from (N, 3) positions and (N, 4) quaternions, or the identity
