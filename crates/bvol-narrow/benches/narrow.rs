@@ -303,19 +303,25 @@ fn time_paths(c: &mut Criterion, name: &str, paths: &[Vec<Posed>], cold: bool) {
 }
 
 /// The World's shapes as `bvol bench world` runs them: the cube and each
-/// shipped mesh's hull, at scales 1e-3, 1 and 1e3.
+/// shipped mesh's hull (143 to 538 vertices), and a hull of `BIG_HULL`
+/// vertices (an ellipsoid's), at scales 1e-3, 1 and 1e3.
 fn world_shapes() -> Vec<TestShape> {
     let mut out = Vec::new();
     for scale in [1e-3f32, 1.0, 1e3] {
-        let cube = shapes::box_corners(Vec3::splat(0.5))
-            .into_iter()
-            .map(|p| p * scale)
-            .collect::<Vec<_>>();
+        let scaled = |points: Vec<Vec3>, axes: Vec3| {
+            points.into_iter().map(|p| p * axes * scale).collect::<Vec<_>>()
+        };
+        let cube = scaled(shapes::box_corners(Vec3::splat(0.5)), Vec3::ONE);
         out.push(TestShape::new("cube", scale, &cube));
         out.extend(shapes::MESHES.iter().map(|m| shapes::mesh_hull(m, scale)));
+        let ellipsoid = scaled(shapes::fibonacci_sphere(BIG_HULL), Vec3::new(1.0, 0.6, 0.35));
+        out.push(TestShape::new("ellipsoid", scale, &ellipsoid));
     }
     out
 }
+
+/// Vertices of the diet's largest hull: every point of an ellipsoid is on its hull.
+const BIG_HULL: usize = 2000;
 
 /// What the World's narrow phase is handed: pairs of one shape (as `bvol
 /// bench world` gives every body the same one) whose bounding spheres and
@@ -395,8 +401,9 @@ fn resting_diet<'a>(shapes: &'a [TestShape], per_pair: usize) -> Vec<(&'static s
 /// Hull contacts on the World's diet, cold, bvol against parry3d's `contact`
 /// on the same pairs: the pairs a uniform world's bounds pass on (all, then
 /// by the exact separation: touching deeper than 1e-3 of the size, within
-/// 1e-3 of touching, apart by more), and resting, grazing and just-clear
-/// pairs of every two shapes at each scale.
+/// 1e-3 of touching, apart by more), resting, grazing and just-clear
+/// pairs of every two shapes at each scale, and all the pairs of the
+/// largest hull.
 fn hull_contact_diet(c: &mut Criterion) {
     let shapes = world_shapes();
     let world = world_diet(&shapes, 200);
@@ -410,17 +417,29 @@ fn hull_contact_diet(c: &mut Criterion) {
         world.len(),
         verdicts.len()
     );
-    let mut sets: Vec<(&str, Vec<&Posed>)> = vec![("world", world.iter().collect())];
+    // The largest hull's pairs are timed apart: the other sets are the
+    // mix of the shipped meshes and the cube alone.
+    let big = |p: &Posed| p.a.points.len() >= BIG_HULL || p.b.points.len() >= BIG_HULL;
+    let small: Vec<&Posed> = world.iter().filter(|p| !big(p)).collect();
+    let mut sets: Vec<(&str, Vec<&Posed>)> = vec![("world", small.clone())];
     for (name, keep) in [
         ("world-touching", &(|s: f64| s < -NEAR_BAND) as &dyn Fn(f64) -> bool),
         ("world-near", &|s: f64| s.abs() <= NEAR_BAND),
         ("world-apart", &|s: f64| s > NEAR_BAND),
     ] {
-        sets.push((name, world.iter().filter(|p| keep(p.exact_separation())).collect()));
+        sets.push((name, small.iter().copied().filter(|p| keep(p.exact_separation())).collect()));
     }
     for kind in ["resting", "grazing", "near"] {
-        sets.push((kind, resting.iter().filter(|r| r.0 == kind).map(|r| &r.1).collect()));
+        let of_kind = resting.iter().filter(|r| r.0 == kind && !big(&r.1)).map(|r| &r.1);
+        sets.push((kind, of_kind.collect()));
     }
+    // Every pair of the largest hull (with itself and with every shape), and
+    // those touching or within 1e-3 of it.
+    let with_big: Vec<&Posed> =
+        world.iter().chain(resting.iter().map(|r| &r.1)).filter(|p| big(p)).collect();
+    let big_touching = with_big.iter().copied().filter(|p| p.exact_separation() < NEAR_BAND);
+    sets.push(("big-hull-touching", big_touching.collect()));
+    sets.push(("big-hull", with_big));
     for (name, set) in &sets {
         let touching =
             set.iter().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
@@ -450,11 +469,17 @@ fn hull_contact_diet(c: &mut Criterion) {
                 .collect()
         })
         .collect();
-    let steps = paths.iter().map(Vec::len).sum::<usize>();
-    let touching =
-        paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching()).count();
-    println!("diet moving: {} paths, {steps} steps ({touching} touching)", paths.len());
-    time_paths(c, "hull_contact_diet_moving", &paths, false);
+    // The largest hull's paths apart, as above.
+    let (big_paths, paths): (Vec<_>, Vec<_>) = paths.into_iter().partition(|path| big(&path[0]));
+    for (name, paths) in
+        [("hull_contact_diet_moving", paths), ("hull_contact_diet_moving_big", big_paths)]
+    {
+        let steps = paths.iter().map(Vec::len).sum::<usize>();
+        let touching =
+            paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching());
+        println!("{name}: {} paths, {steps} steps ({} touching)", paths.len(), touching.count());
+        time_paths(c, name, &paths, false);
+    }
 }
 
 /// Frames of each slowly moving diet pair.
