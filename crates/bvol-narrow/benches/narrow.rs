@@ -16,7 +16,7 @@ mod common;
 use std::hint::black_box;
 use std::time::Duration;
 
-use bvol_narrow::{Collision, WarmStart, hull_hull, obb_obb};
+use bvol_narrow::{Collision, MAX_REUSE, WarmStart, hull_hull, obb_obb};
 use bvol_volumes::{Obb, ObbMethod, Pose, Sphere, SphereMethod};
 use common::reference::{Pair, Place};
 use common::shapes::{self, TestShape};
@@ -246,7 +246,7 @@ fn hull_contacts(c: &mut Criterion) {
         "moving pairs: {} paths, {steps} steps ({touching} touching), {compared} verdicts compared",
         paths.len()
     );
-    time_paths(c, "hull_contact_moving", &paths, true);
+    time_paths(c, "hull_contact_moving", &paths, &[], true);
 }
 
 /// Times each named set of pairs in group `group`, cold (a fresh warm start
@@ -272,22 +272,29 @@ fn time_cold(c: &mut Criterion, group: &str, sets: &[(&str, Vec<&Posed>)]) {
 }
 
 /// Times `paths` in group `name`: bvol with one warm start kept per path,
-/// bvol with each call cold (where `cold`), and parry3d.
-fn time_paths(c: &mut Criterion, name: &str, paths: &[Vec<Posed>], cold: bool) {
+/// then one reusing touching pairs' features at each tolerance of `reuse`
+/// (see `WarmStart::reusing`), bvol with each call cold (where `cold`), and
+/// parry3d.
+fn time_paths(c: &mut Criterion, name: &str, paths: &[Vec<Posed>], reuse: &[f32], cold: bool) {
     let steps = paths.iter().map(Vec::len).sum::<usize>();
     let mut group = c.benchmark_group(name);
     settings(&mut group);
     group.throughput(Throughput::Elements(steps as u64));
-    group.bench_function("bvol_warm", |bench| {
-        bench.iter(|| {
-            let mut touching = 0;
-            for path in black_box(paths) {
-                let mut warm = WarmStart::default();
-                touching += path.iter().filter(|p| p.bvol(&mut warm).is_touching()).count();
-            }
-            touching
-        })
-    });
+    let warm_runs = std::iter::once(("bvol_warm".to_string(), 0.0))
+        .chain(reuse.iter().map(|&t| (format!("bvol_reuse_{t:e}"), t)));
+    for (label, tolerance) in warm_runs {
+        let fresh = || WarmStart::reusing(tolerance).expect("a tolerance");
+        group.bench_function(label, |bench| {
+            bench.iter(|| {
+                let mut touching = 0;
+                for path in black_box(paths) {
+                    let mut warm = fresh();
+                    touching += path.iter().filter(|p| p.bvol(&mut warm).is_touching()).count();
+                }
+                touching
+            })
+        });
+    }
     if cold {
         group.bench_function("bvol_cold", |bench| {
             bench.iter(|| {
@@ -478,9 +485,38 @@ fn hull_contact_diet(c: &mut Criterion) {
         let touching =
             paths.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching());
         println!("{name}: {} paths, {steps} steps ({} touching)", paths.len(), touching.count());
-        time_paths(c, name, &paths, false);
+        time_paths(c, name, &paths, &[ACCURATE_REUSE, MAX_REUSE], false);
     }
+
+    // The resting pairs as a solver's pile holds them: each frame B jitters
+    // about its resting pose by up to 1e-6 of the size and 1e-6 rad.
+    let jittering: Vec<Vec<Posed>> = resting
+        .iter()
+        .filter(|r| r.0 == "resting" && !big(&r.1))
+        .map(|(_, p)| {
+            let size = p.a.size.max(p.b.size) as f32;
+            (0..DIET_FRAMES)
+                .map(|_| {
+                    let jitter = random_unit(&mut rng) * 1e-6 * size;
+                    let wobble = Quat::from_axis_angle(random_unit(&mut rng), 1e-6);
+                    let pose_b = Pose::new(
+                        p.pose_b.position + jitter,
+                        (wobble * p.pose_b.rotation).normalize(),
+                    );
+                    Posed { a: p.a, b: p.b, pose_a: p.pose_a, pose_b }
+                })
+                .collect()
+        })
+        .collect();
+    let touching =
+        jittering.iter().flatten().filter(|p| p.bvol(&mut WarmStart::default()).is_touching());
+    println!("jittering: {} paths, {} touching steps", jittering.len(), touching.count());
+    time_paths(c, "hull_contact_diet_jittering", &jittering, &[ACCURATE_REUSE], false);
 }
+
+/// The reuse tolerance whose contacts keep the narrow phase's accuracy:
+/// depths within `2e-5 + 2 * 4e-5 = 1e-4` of the size of the least.
+const ACCURATE_REUSE: f32 = 4e-5;
 
 /// Frames of each slowly moving diet pair.
 const DIET_FRAMES: usize = 20;

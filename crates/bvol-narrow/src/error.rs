@@ -116,6 +116,10 @@ pub enum NarrowError {
     /// A margin ([`contact_within`](crate::contact_within)) that is negative
     /// or not finite.
     BadMargin,
+    /// A reuse tolerance ([`WarmStart::reusing`](crate::WarmStart::reusing))
+    /// that is negative, not finite or above
+    /// [`MAX_REUSE`](crate::MAX_REUSE).
+    BadTolerance,
 }
 
 impl NarrowError {
@@ -132,6 +136,7 @@ impl NarrowError {
                 NarrowError::PoseOutOfRange { body: body.other() }
             }
             NarrowError::BadMargin => NarrowError::BadMargin,
+            NarrowError::BadTolerance => NarrowError::BadTolerance,
         }
     }
 }
@@ -153,6 +158,11 @@ impl fmt::Display for NarrowError {
             NarrowError::BadMargin => {
                 write!(f, "the margin must be finite and not negative")
             }
+            NarrowError::BadTolerance => write!(
+                f,
+                "the reuse tolerance must be finite, not negative and at most {:e}",
+                crate::MAX_REUSE
+            ),
         }
     }
 }

@@ -7,8 +7,9 @@ use crate::box_sat::box_queries;
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
 use crate::manifold::{Manifold, edge_contact, face_contact, vertex_contact};
+use crate::rest::Rest;
 use crate::sat::{AxisGap, EdgeQuery, FaceQuery, centre_axis, centre_line, edge_query, face_query};
-use crate::warm::{Apart, Feature, WarmStart, answers, margin, retest};
+use crate::warm::{Apart, Feature, Last, WarmStart, answers, margin, retest};
 use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 
 /// A face of A is taken as the contact's feature when its separation is
@@ -57,7 +58,8 @@ const MASK_DEPTH: f64 = 0.25;
 ///
 /// `warm` carries the deciding feature and the last gap measured from call
 /// to call (see [`WarmStart`]); it makes apart pairs cheap and never changes
-/// whether a pair touches, nor any contact.
+/// whether a pair touches, nor, unless made with
+/// [`WarmStart::reusing`], any contact.
 ///
 /// A pose with a NaN or infinite component (or a zero rotation) is
 /// [`NarrowError::NonFinitePose`].
@@ -85,16 +87,62 @@ pub fn hull_hull(
 ) -> Result<Collision, NarrowError> {
     DIsometry3::check(pose_a, Body::A)?;
     DIsometry3::check(pose_b, Body::B)?;
-    if let Some(gap) = warm.apart.gap_above((a, pose_a), (b, pose_b), margin(a, b)) {
-        return Ok(Collision::separated(warm.apart.axis.as_dvec3(), gap));
+    match warm.last {
+        Last::Apart(apart) => {
+            if let Some(gap) = apart.gap_above((a, pose_a), (b, pose_b), margin(a, b)) {
+                return Ok(Collision::separated(apart.axis.as_dvec3(), gap));
+            }
+        }
+        Last::Touching(rest) => {
+            if let Some(contact) = reuse((a, pose_a), (b, pose_b), warm, &rest) {
+                return Ok(contact);
+            }
+        }
+        Last::Nothing => {}
     }
     let (iso_a, iso_b) = (DIsometry3::of_checked(pose_a), DIsometry3::of_checked(pose_b));
     let answer = collide(a, &iso_a, b, &iso_b, warm);
-    warm.apart = match answer {
-        Answer::Apart { axis, gap } => Apart::measured(axis, gap, (a, pose_a), (b, pose_b)),
-        Answer::Touching(_) => Apart::NONE,
+    warm.last = match answer {
+        Answer::Apart { axis, gap } => {
+            Last::Apart(Apart::measured(axis, gap, (a, pose_a), (b, pose_b)))
+        }
+        // The queries can miss the greatest separation by up to the warm
+        // start's margin (hill climbs on merged faces): allowed for.
+        Answer::Touching { greatest, .. } if warm.reuse > 0.0 => {
+            Last::Touching(Rest::measured(greatest + margin(a, b), (a, pose_a), (b, pose_b)))
+        }
+        Answer::Touching { .. } => Last::Nothing,
     };
     Ok(answer.collision())
+}
+
+/// The contact along the feature of the pair's last full test (in `warm`,
+/// recorded in `rest`), if the pair moved by at most the warm start's reuse
+/// tolerance since and still overlaps by more than it moved (see
+/// [`WarmStart`]); `None` sends the call to the full test.
+fn reuse(
+    (a, pose_a): (&Polyhedron, &Pose),
+    (b, pose_b): (&Polyhedron, &Pose),
+    warm: &WarmStart,
+    rest: &Rest,
+) -> Option<Collision> {
+    let size = a.size().max(b.size());
+    let tolerance = f64::from(warm.reuse) * size;
+    let moved = rest.motion((a, pose_a), (b, pose_b)).filter(|&m| m <= tolerance)?;
+    // The greatest separation over all axes now is at most this: below
+    // zero, the pair still touches.
+    let greatest = rest.least() + moved;
+    if greatest >= 0.0 {
+        return None;
+    }
+    let (iso_a, iso_b) = (DIsometry3::of_checked(pose_a), DIsometry3::of_checked(pose_b));
+    let (rel, inv) = (iso_a.relative(&iso_b), iso_b.relative(&iso_a));
+    let pair = Pair { a, iso_a: &iso_a, b, iso_b: &iso_b, rel: &rel, inv: &inv };
+    let choice = pair.measure(warm.feature)?;
+    // Its depth is at most this above the least penetration depth now.
+    let above = greatest - choice.separation();
+    let within = choice.separation() <= 0.0 && above <= PREFER_ABS * size + 2.0 * tolerance;
+    within.then(|| pair.contact(choice)).flatten()
 }
 
 /// A test's answer in f64, before it is rounded for the caller.
@@ -107,8 +155,14 @@ pub(crate) enum Answer {
         /// The gap along it.
         gap: f64,
     },
-    /// Touching, with the contact.
-    Touching(Collision),
+    /// Touching, with the contact and the greatest separation over all
+    /// axes (minus the least penetration depth).
+    Touching {
+        /// The contact.
+        collision: Collision,
+        /// The greatest separation.
+        greatest: f64,
+    },
 }
 
 impl Answer {
@@ -116,7 +170,7 @@ impl Answer {
     pub(crate) fn collision(self) -> Collision {
         match self {
             Answer::Apart { axis, gap } => Collision::separated(axis, gap),
-            Answer::Touching(collision) => collision,
+            Answer::Touching { collision, .. } => collision,
         }
     }
 }
@@ -307,9 +361,32 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         } else {
             least
         };
-        self.touching(preferred)
-            .or_else(|| self.touching(least))
-            .unwrap_or_else(|| self.touching_at_support(least))
+        let greatest = least.separation();
+        self.touching(preferred, greatest)
+            .or_else(|| self.touching(least, greatest))
+            .unwrap_or_else(|| self.touching_at_support(least, greatest))
+    }
+
+    /// The cached feature's query measured again at these poses (see
+    /// [`retest`]); `None` for the centre line, nothing cached, a feature
+    /// out of range or edges now parallel.
+    fn measure(&self, feature: Feature) -> Option<Choice> {
+        let g = retest(feature, self.a, self.iso_a, self.b, self.iso_b, self.rel)?;
+        match feature {
+            Feature::FaceA { face, .. } => {
+                Some(Choice::FaceA(FaceQuery { face, separation: g.gap, support: g.supports.1 }))
+            }
+            Feature::FaceB { face, .. } => {
+                Some(Choice::FaceB(FaceQuery { face, separation: g.gap, support: g.supports.0 }))
+            }
+            Feature::Edges { edge_a, half_edge_b } => Some(Choice::Edges(EdgeQuery {
+                edge_a,
+                half_edge_b,
+                separation: g.gap,
+                axis: g.axis,
+            })),
+            Feature::None | Feature::Centres { .. } => None,
+        }
     }
 
     /// The cache entry of a choice.
@@ -337,19 +414,28 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         (self.feature(choice), Answer::Apart { axis, gap })
     }
 
-    /// Touching along the choice's axis, with its manifold; `None` if a face's
-    /// clipped incident face has no point at or below the reference plane.
-    fn touching(&self, choice: Choice) -> Option<(Feature, Answer)> {
+    /// Touching along the choice's axis, with its manifold and the greatest
+    /// separation; `None` if a face's clipped incident face has no point at
+    /// or below the reference plane.
+    fn touching(&self, choice: Choice, greatest: f64) -> Option<(Feature, Answer)> {
+        let collision = self.contact(choice)?;
+        Some((self.feature(choice), Answer::Touching { collision, greatest }))
+    }
+
+    /// The contact along the choice's axis, with its manifold; `None` as
+    /// for [`Pair::touching`].
+    fn contact(&self, choice: Choice) -> Option<Collision> {
         let (manifold, to_world) = self.manifold(choice, false);
-        (manifold.count > 0).then(|| self.answer(choice, &manifold, to_world))
+        (manifold.count > 0).then(|| self.collision(choice, &manifold, to_world))
     }
 
     /// Touching along a face's axis at the other shape's lowest vertex: for
     /// when rounding leaves the clipped face of even the least penetration
     /// just above its reference plane.
-    fn touching_at_support(&self, choice: Choice) -> (Feature, Answer) {
+    fn touching_at_support(&self, choice: Choice, greatest: f64) -> (Feature, Answer) {
         let (manifold, to_world) = self.manifold(choice, true);
-        self.answer(choice, &manifold, to_world)
+        let collision = self.collision(choice, &manifold, to_world);
+        (self.feature(choice), Answer::Touching { collision, greatest })
     }
 
     /// The choice's manifold, in the space that the returned isometry maps to
@@ -382,16 +468,11 @@ impl<A: Convex, B: Convex> Pair<'_, A, B> {
         )
     }
 
-    /// The touching answer for a choice and its manifold (in the space `to_world` maps).
-    fn answer(
-        &self,
-        choice: Choice,
-        manifold: &Manifold,
-        to_world: &DIsometry3,
-    ) -> (Feature, Answer) {
+    /// The touching answer for a choice and its manifold (in the space
+    /// `to_world` maps).
+    fn collision(&self, choice: Choice, manifold: &Manifold, to_world: &DIsometry3) -> Collision {
         let (normal, separation) = self.axis(choice);
-        let contact = Collision::touching(normal, -separation, manifold, to_world);
-        (self.feature(choice), Answer::Touching(contact))
+        Collision::touching(normal, -separation, manifold, to_world)
     }
 }
 
@@ -409,5 +490,59 @@ fn face_manifold<R: Convex, I: Convex>(
         vertex_contact(reference, q.face, incident, rel, q.support)
     } else {
         face_contact(reference, q.face, incident, rel, q.support)
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use glam::{Quat, Vec3};
+
+    use super::*;
+
+    /// A tile and a cube resting on it, 0.01 deep; the cube jittered by
+    /// `dx` along x and lifted by `up`.
+    fn resting(up: f32, dx: f32) -> (Polyhedron, Polyhedron, Pose) {
+        let tile = Polyhedron::cuboid(Vec3::new(2.0, 0.1, 2.0)).expect("a box");
+        let cube = Polyhedron::cuboid(Vec3::splat(0.5)).expect("a box");
+        (tile, cube, Pose::new(Vec3::new(dx, 0.59 + up, 0.0), Quat::IDENTITY))
+    }
+
+    /// What the reuse answers for the cube at `pose` from the record of the
+    /// full test in `warm`.
+    fn reused(
+        tile: &Polyhedron,
+        cube: &Polyhedron,
+        pose: &Pose,
+        warm: &WarmStart,
+    ) -> Option<Collision> {
+        let Last::Touching(rest) = warm.last else { panic!("no record: {:?}", warm.last) };
+        reuse((tile, &Pose::IDENTITY), (cube, pose), warm, &rest)
+    }
+
+    /// A reusing warm start keeps a touching pair's record; the pair jittered
+    /// by a little is answered from it, with the full test's contact there;
+    /// moved past the tolerance, or overlapping by less than it moved, it is
+    /// sent to the full test. A default warm start keeps no record.
+    #[test]
+    fn reuse_answers_while_the_pair_barely_moves() {
+        let (tile, cube, pose) = resting(0.0, 0.0);
+        let mut plain = WarmStart::default();
+        hull_hull(&tile, &Pose::IDENTITY, &cube, &pose, &mut plain).expect("finite");
+        assert_eq!(plain.last, Last::Nothing);
+        let mut warm = WarmStart::reusing(4e-5).expect("a tolerance");
+        let first = hull_hull(&tile, &Pose::IDENTITY, &cube, &pose, &mut warm).expect("finite");
+        assert!(first.is_touching());
+        // 4e-5 of the tile's half diagonal (2.83) is 1.1e-4.
+        let (_, _, jittered) = resting(0.0, 1e-6);
+        let cold = hull_hull(&tile, &Pose::IDENTITY, &cube, &jittered, &mut WarmStart::default());
+        let got = reused(&tile, &cube, &jittered, &warm).expect("reused");
+        assert_eq!(Ok(got), cold);
+        let (_, _, moved) = resting(0.0, 2e-4);
+        assert_eq!(reused(&tile, &cube, &moved, &warm), None);
+        // Just touching (1e-6 deep), then jittered by more than that.
+        let (_, _, grazing) = resting(0.01 - 1e-6, 0.0);
+        hull_hull(&tile, &Pose::IDENTITY, &cube, &grazing, &mut warm).expect("finite");
+        let (_, _, off) = resting(0.01 - 1e-6, 1e-5);
+        assert_eq!(reused(&tile, &cube, &off, &warm), None);
     }
 }

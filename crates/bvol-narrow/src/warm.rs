@@ -5,11 +5,12 @@
 use bvol_volumes::Pose;
 use glam::{DVec3, Quat, Vec3};
 
-use crate::Polyhedron;
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
+use crate::rest::Rest;
 use crate::sat::{AxisGap, axis_gap, centre_axis, edge_separation, face_separation};
 use crate::topology::Topology;
+use crate::{NarrowError, Polyhedron};
 
 /// A cached axis must separate the shapes by more than this, relative to their
 /// size, for the call to answer from it alone. The full query can miss a
@@ -85,10 +86,86 @@ pub(crate) enum Feature {
 /// ignored. Two boxes (see [`Polyhedron::cuboid`](crate::Polyhedron::cuboid))
 /// do not re-test the feature: their closed-form test of all 15 axes costs
 /// about what the retest does.
+///
+/// A warm start made with [`WarmStart::reusing`] also reuses a touching
+/// pair's contact feature, as the persistent manifolds of Bullet and PhysX
+/// do: it keeps, from the last full test of a pair found touching, the
+/// greatest separation over all axes (minus the least penetration depth)
+/// and the bodies' poses. While no point of either body has moved by more
+/// than the tolerance (times the pair's size, the larger shape's half
+/// diagonal) in the other's space since, and the pair still overlaps by
+/// more than that motion, the call re-measures the feature that decided the
+/// last full test (one hill climb for a face, one edge pair) and clips its
+/// manifold, searching no other face or edge. Whether the pair touches is
+/// then proved from the motion, so it is always a cold call's verdict; the
+/// contact is along a feature whose depth is at most `2e-5 + 2 *
+/// tolerance` of the size above the least penetration depth (a cold call's
+/// is within `2e-5`), the same feature from frame to frame where a cold
+/// call may now pick another about as deep. A pair resting in a solver's
+/// pile, jittering by a rounding, is tested in full once and then reuses
+/// its contact frame after frame.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WarmStart {
     pub(crate) feature: Feature,
-    pub(crate) apart: Apart,
+    pub(crate) last: Last,
+    /// The reuse tolerance, relative to the pair's size: 0 reuses nothing.
+    pub(crate) reuse: f32,
+}
+
+/// The largest reuse tolerance [`WarmStart::reusing`] takes: 1% of the
+/// size, beyond which a reused contact's depth could be off by several
+/// percent of it.
+pub const MAX_REUSE: f32 = 1e-2;
+
+impl WarmStart {
+    /// A warm start that reuses a touching pair's contact feature while the
+    /// pair moves by at most `tolerance` of its size since its last full
+    /// test (see [`WarmStart`]); `0` reuses nothing, as
+    /// `WarmStart::default()`. A tolerance that is negative, not finite or
+    /// above [`MAX_REUSE`] is [`NarrowError::BadTolerance`].
+    ///
+    /// ```
+    /// use bvol_narrow::{Collision, Polyhedron, Pose, WarmStart, hull_hull};
+    /// use glam::{Quat, Vec3};
+    /// let tile = Polyhedron::cuboid(Vec3::new(2.0, 0.1, 2.0))?;
+    /// let cube = Polyhedron::cuboid(Vec3::splat(0.5))?;
+    /// let rests = |jitter: f32| Pose::new(Vec3::new(jitter, 0.59, 0.0), Quat::IDENTITY);
+    /// let mut warm = WarmStart::reusing(4e-5)?;
+    /// for frame in 0..10 {
+    ///     // Sunk 0.01 into the tile, jittering by 1e-6.
+    ///     let jitter = if frame % 2 == 0 { 1e-6 } else { -1e-6 };
+    ///     let hit = hull_hull(&tile, &Pose::IDENTITY, &cube, &rests(jitter), &mut warm)?;
+    ///     let contact = hit.contact().expect("resting on the tile");
+    ///     assert_eq!(contact.normal, Vec3::Y);
+    ///     assert!((contact.depth - 0.01).abs() < 1e-5);
+    /// }
+    /// assert!(WarmStart::reusing(-1.0).is_err());
+    /// # Ok::<(), Box<dyn std::error::Error>>(())
+    /// ```
+    pub fn reusing(tolerance: f32) -> Result<WarmStart, NarrowError> {
+        if !(0.0..=MAX_REUSE).contains(&tolerance) {
+            return Err(NarrowError::BadTolerance);
+        }
+        Ok(WarmStart { reuse: tolerance, ..WarmStart::default() })
+    }
+
+    /// The reuse tolerance it was made with (`0` for none).
+    pub fn reuse_tolerance(&self) -> f32 {
+        self.reuse
+    }
+}
+
+/// What a warm start knows of the pair's last full test besides its
+/// feature.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) enum Last {
+    /// Nothing: no test yet, or touching without reuse.
+    #[default]
+    Nothing,
+    /// Apart, by a gap that bounds the next calls' from the motion.
+    Apart(Apart),
+    /// Touching, reused while the pair barely moves.
+    Touching(Rest),
 }
 
 /// The last gap measured between a pair that was apart, and where the bodies
@@ -111,27 +188,13 @@ pub(crate) struct Apart {
     rotations: [[f32; 4]; 2],
     /// A lower bound of the gap along `axis` then, less `axis . (p_B - p_A)`
     /// for the positions then: adding it for the positions now gives the
-    /// gap had the bodies only moved, not turned. `-inf`: nothing measured.
+    /// gap had the bodies only moved, not turned.
     base: f32,
     /// A's and B's shapes (their ids): the bound holds for these alone.
     shapes: [u32; 2],
 }
 
-impl Default for Apart {
-    fn default() -> Self {
-        Apart::NONE
-    }
-}
-
 impl Apart {
-    /// Nothing measured: bounds no gap.
-    pub(crate) const NONE: Apart = Apart {
-        axis: Vec3::ZERO,
-        rotations: [[0.0, 0.0, 0.0, 1.0]; 2],
-        base: f32::NEG_INFINITY,
-        shapes: [u32::MAX; 2],
-    };
-
     /// The gap `gap` measured along the unit `axis` between shapes `a` and
     /// `b` at these poses.
     pub(crate) fn measured(
@@ -171,7 +234,7 @@ impl Apart {
         }
         let n = self.axis.as_dvec3();
         let offset = offset(pose_a, pose_b);
-        let base = f64::from(self.base); // -inf when nothing was measured
+        let base = f64::from(self.base);
         let rounding = ROUNDING * (base.abs() + offset.abs().max_element() + a.reach + b.reach);
         let moved = base + n.dot(offset) - rounding;
         if moved <= margin {
@@ -200,14 +263,14 @@ impl Apart {
 }
 
 /// Relative rounding allowed for in [`Apart`]'s f64 sums.
-const ROUNDING: f64 = 16.0 * f64::EPSILON;
+pub(crate) const ROUNDING: f64 = 16.0 * f64::EPSILON;
 
 /// How far from unit an f32-rounded unit vector's length may be: `2^-23`,
 /// more than the `2^-24` relative rounding of each component gives.
-const STORED: f64 = 1.0 / (1 << 23) as f64;
+pub(crate) const STORED: f64 = 1.0 / (1 << 23) as f64;
 
 /// B's position less A's, in f64 (exact from f32).
-fn offset(pose_a: &Pose, pose_b: &Pose) -> DVec3 {
+pub(crate) fn offset(pose_a: &Pose, pose_b: &Pose) -> DVec3 {
     pose_b.position.as_dvec3() - pose_a.position.as_dvec3()
 }
 
@@ -331,6 +394,5 @@ mod tests {
         assert!(bound <= gap && bound > gap - 1e-6, "{bound} for {gap}");
         assert_eq!(apart.gap_above((&other, &pa), (&cube, &pb), 0.0), None);
         assert_eq!(apart.gap_above((&cube, &pa), (&other, &pb), 0.0), None);
-        assert_eq!(Apart::NONE.gap_above((&cube, &pa), (&cube, &pb), 0.0), None);
     }
 }
