@@ -154,6 +154,13 @@ pub enum WorldError {
         /// The margin asked for.
         margin: f32,
     },
+    /// A [`WorldConfig`](crate::WorldConfig) asked for a reuse tolerance
+    /// that is negative, not finite or above
+    /// [`MAX_REUSE`](crate::narrow::MAX_REUSE).
+    BadReuse {
+        /// The tolerance asked for.
+        reuse: f32,
+    },
 }
 
 impl fmt::Display for WorldError {
@@ -181,6 +188,11 @@ impl fmt::Display for WorldError {
             WorldError::BadMargin { margin } => write!(
                 f,
                 "WorldConfig::margin: {margin} is not a distance from 0 to {MAX_COORDINATE:e}"
+            ),
+            WorldError::BadReuse { reuse } => write!(
+                f,
+                "WorldConfig::reuse: {reuse} is not a tolerance from 0 to {:e}",
+                crate::narrow::MAX_REUSE
             ),
         }
     }

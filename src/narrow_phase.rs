@@ -8,9 +8,9 @@ use bvol_volumes::prefetch;
 use glam::{DVec3, Vec3};
 use rayon::prelude::*;
 
-use crate::BodyKind;
 use crate::bodies::Bodies;
 use crate::event::{ContactEvent, EventKind, contact_of};
+use crate::{BodyKind, WorldConfig};
 
 /// How many pairs ahead the narrow phase asks for the second body's data.
 const AHEAD: usize = 8;
@@ -88,7 +88,8 @@ impl Still<'_> {
 /// The narrow phase of one frame: each of `pairs` (sorted by slot) tested,
 /// with its warm starts from last frame, and the events written after those
 /// already in `events` (the contacts of removed bodies, sorted in with the
-/// rest); a pair is in contact when it touches or is apart within `margin`.
+/// rest); a pair is in contact when it touches or is apart within the
+/// config's margin, and its warm starts reuse features as the config says.
 /// Returns how many are in contact, and the pairs in contact it kept
 /// untested (both bodies resting), sorted.
 ///
@@ -99,7 +100,7 @@ impl Still<'_> {
 pub(crate) fn narrow_phase(
     bodies: &Bodies,
     still: Still,
-    margin: f32,
+    config: &WorldConfig,
     pairs: &[(u32, u32)],
     states: &mut PairStates,
     spare: &mut PairStates,
@@ -120,9 +121,9 @@ pub(crate) fn narrow_phase(
     let ended: Vec<(u32, u32)> = ended.into_iter().map(|(key, _)| key).collect();
     let orphans = !events.is_empty();
     let counts = if rayon::current_num_threads() == 1 || next.is_empty() {
-        test_run(bodies, still, margin, &mut next, pairs, &ended, events)
+        test_run(bodies, still, config, &mut next, pairs, &ended, events)
     } else {
-        test_in_runs(bodies, still, margin, &mut next, pairs, &ended, runs, events)
+        test_in_runs(bodies, still, config, &mut next, pairs, &ended, runs, events)
     };
     let kept_keys = kept.iter().map(|&(key, _)| key).collect();
     if !kept.is_empty() {
@@ -168,7 +169,7 @@ fn carry_over(old: &mut PairStates, pairs: &[(u32, u32)], next: &mut PairStates)
 fn test_in_runs(
     bodies: &Bodies,
     still: Still,
-    margin: f32,
+    config: &WorldConfig,
     states: &mut [((u32, u32), PairState)],
     pairs: &[(u32, u32)],
     ended: &[(u32, u32)],
@@ -189,7 +190,7 @@ fn test_in_runs(
         .map(|(r, (chunk, out))| {
             let gone = &ended[if r == 0 { 0 } else { below(r) }..below(r + 1)];
             out.clear();
-            test_run(bodies, still, margin, chunk, &pairs[r * run..], gone, out)
+            test_run(bodies, still, config, chunk, &pairs[r * run..], gone, out)
         })
         .reduce(Counts::default, |x, y| x + y);
     runs.iter().for_each(|out| events.extend_from_slice(out));
@@ -204,7 +205,7 @@ fn test_in_runs(
 fn test_run(
     bodies: &Bodies,
     still: Still,
-    margin: f32,
+    config: &WorldConfig,
     run: &mut [((u32, u32), PairState)],
     ahead: &[(u32, u32)],
     ended: &[(u32, u32)],
@@ -226,7 +227,7 @@ fn test_run(
             true => Some(None),
             false => None,
         };
-        let contact = kept.unwrap_or_else(|| collide(bodies, a, b, margin, state));
+        let contact = kept.unwrap_or_else(|| collide(bodies, a, b, config, state));
         state.tested = true;
         let was = state.in_contact;
         state.in_contact = contact.is_some();
@@ -251,10 +252,16 @@ fn test_run(
 }
 
 /// How bodies `a` and `b` touch, or how near they are when apart within
-/// `margin`: the deepest contact over their pairs of convex parts (the
+/// the config's margin: the deepest contact over their pairs of convex parts (the
 /// nearest, when none touches), the normal from `a` to `b`.
-fn collide(bodies: &Bodies, a: u32, b: u32, margin: f32, state: &mut PairState) -> Option<Contact> {
-    let (contact, anchor) = anchored(bodies, a, b, margin, state)?;
+fn collide(
+    bodies: &Bodies,
+    a: u32,
+    b: u32,
+    config: &WorldConfig,
+    state: &mut PairState,
+) -> Option<Contact> {
+    let (contact, anchor) = anchored(bodies, a, b, config, state)?;
     if anchor == DVec3::ZERO {
         return Some(contact);
     }
@@ -276,9 +283,9 @@ pub(crate) fn anchored_contact(
     bodies: &Bodies,
     a: u32,
     b: u32,
-    margin: f32,
+    config: &WorldConfig,
 ) -> Option<(Contact, DVec3)> {
-    anchored(bodies, a, b, margin, &mut PairState::default())
+    anchored(bodies, a, b, config, &mut PairState::default())
 }
 
 /// [`collide`]'s contact with its points relative to an anchor, and the
@@ -289,7 +296,7 @@ fn anchored(
     bodies: &Bodies,
     a: u32,
     b: u32,
-    margin: f32,
+    config: &WorldConfig,
     state: &mut PairState,
 ) -> Option<(Contact, DVec3)> {
     let (a, b) = (a as usize, b as usize);
@@ -302,9 +309,16 @@ fn anchored(
         pose_a.position = Vec3::ZERO;
         pose_b.position = (bodies.positions[b] - anchor).as_vec3();
     }
+    // A fresh state's warm starts take the world's reuse tolerance.
+    let fresh = WarmStart::reusing(config.reuse).unwrap_or_default();
+    if state.warm.reuse_tolerance() != fresh.reuse_tolerance() {
+        state.warm = fresh;
+    }
     let more = parts_a.len() * parts_b.len() - 1;
-    if state.more.len() != more {
-        state.more = vec![WarmStart::default(); more].into_boxed_slice();
+    if state.more.len() != more
+        || state.more.first().is_some_and(|w| w.reuse_tolerance() != fresh.reuse_tolerance())
+    {
+        state.more = vec![fresh; more].into_boxed_slice();
     }
     let mut deepest: Option<Contact> = None;
     for (i, pa) in parts_a.iter().enumerate() {
@@ -315,7 +329,7 @@ fn anchored(
             };
             // Poses were checked when set and the margin when the world was
             // made, so the tests cannot fail.
-            let found = contact_within(pa, &pose_a, pb, &pose_b, margin, cache);
+            let found = contact_within(pa, &pose_a, pb, &pose_b, config.margin, cache);
             let contact = found.ok().flatten();
             if let Some(c) = contact.filter(|c| deepest.is_none_or(|d| c.depth > d.depth)) {
                 deepest = Some(c);

@@ -98,9 +98,9 @@ impl<B: Broadphase> World<B> {
         events.clear();
         events.append(&mut self.orphaned);
         let still = Still { placed: &placed, last: &self.events };
-        let margin = self.config.margin;
+        let config = &self.config;
         let (counts, kept) =
-            narrow_phase(bodies, still, margin, sorted, &mut self.pairs, states, runs, &mut events);
+            narrow_phase(bodies, still, config, sorted, &mut self.pairs, states, runs, &mut events);
         (stats.touching, stats.near) = (counts.touching, counts.near);
         // A kept pair touched at the last update: its contact is among that
         // update's events or its kept contacts.

@@ -10,7 +10,11 @@
 //! is built again on loading: the broadphases, from the saved boxes (their
 //! pairs are the same, in whatever tree order, and are sorted by slot
 //! before the narrow phase; their queries' order may differ), and the warm
-//! starts, which speed a pair's test but never change its answer.
+//! starts, which speed a pair's test but never change its answer, unless
+//! the world reuses contact features ([`WorldConfig::reuse`]): then a
+//! loaded world tests its touching pairs in full at its first update, and
+//! its contacts may differ from the saved world's there within the reuse's
+//! bound (whether pairs touch, and so the events, are the same).
 
 use std::collections::HashMap;
 use std::fmt;
@@ -62,6 +66,9 @@ pub struct Snapshot {
     version: u32,
     threads: Option<usize>,
     margin: f32,
+    /// The reuse tolerance; absent in snapshots of worlds before it (none).
+    #[serde(default)]
+    reuse: f32,
     shapes: Vec<ShapeData>,
     /// Each slot's generation, and its body if it holds one.
     slots: Vec<(u32, Option<BodyData>)>,
@@ -235,6 +242,7 @@ impl World {
             version: VERSION,
             threads: self.config.threads,
             margin: self.config.margin,
+            reuse: self.config.reuse,
             shapes,
             slots,
             free: b.free.clone(),
@@ -257,7 +265,7 @@ impl World {
         if s.version != VERSION {
             return Err(SnapshotError::Version { found: s.version });
         }
-        let config = WorldConfig { threads: s.threads, margin: s.margin };
+        let config = WorldConfig { threads: s.threads, margin: s.margin, reuse: s.reuse };
         let mut world = World::with_config(config).map_err(SnapshotError::Config)?;
         let shapes = (0..s.shapes.len())
             .map(|k| {

@@ -5,7 +5,7 @@
 
 use std::sync::Arc;
 
-use bvol_narrow::Contact;
+use bvol_narrow::{Contact, WarmStart};
 use bvol_tree::Tree;
 use bvol_volumes::{Aabb, DPose, Obb, Pose, Ray, Sphere, prefetch};
 use glam::{DVec3, Vec3};
@@ -93,6 +93,9 @@ impl World {
         let margin = config.margin;
         if !(0.0..=MAX_COORDINATE).contains(&margin) {
             return Err(WorldError::BadMargin { margin });
+        }
+        if WarmStart::reusing(config.reuse).is_err() {
+            return Err(WorldError::BadReuse { reuse: config.reuse });
         }
         let pool = match config.threads {
             None => None,
@@ -284,7 +287,7 @@ impl<B: Broadphase> World<B> {
     pub fn contact_points_f64(&self, a: BodyId, b: BodyId) -> Result<Vec<DVec3>, WorldError> {
         let (i, j) = (self.slot(a)? as u32, self.slot(b)? as u32);
         let (lo, hi) = (i.min(j), i.max(j));
-        let found = anchored_contact(&self.bodies, lo, hi, self.config.margin);
+        let found = anchored_contact(&self.bodies, lo, hi, &self.config);
         Ok(found.map_or_else(Vec::new, |(contact, anchor)| points_at(&contact, anchor).collect()))
     }
 

@@ -404,6 +404,77 @@ fn bad_margins_are_typed_errors() {
     }
 }
 
+/// A reuse tolerance that is negative, not finite or above the largest is
+/// a typed error naming the setting; zero (the default) and the largest
+/// are taken.
+#[test]
+fn bad_reuse_tolerances_are_typed_errors() {
+    assert_eq!(WorldConfig::default().reuse, 0.0);
+    for reuse in [0.0, 4e-5, bvol::narrow::MAX_REUSE] {
+        let config = WorldConfig::default().with_reuse(reuse);
+        assert_eq!(World::with_config(config).unwrap().config().reuse, reuse);
+    }
+    for reuse in [-1e-9, f32::NAN, f32::INFINITY, bvol::narrow::MAX_REUSE * 2.0] {
+        let got = World::with_config(WorldConfig::default().with_reuse(reuse));
+        let message = got.as_ref().err().map(ToString::to_string).unwrap_or_default();
+        assert!(matches!(got, Err(WorldError::BadReuse { .. })), "{reuse}");
+        assert!(message.contains("WorldConfig::reuse"), "{message}");
+    }
+}
+
+/// A world that reuses contact features, against the same world without:
+/// 400 bodies of every shape kind, moved as frames move them for four
+/// frames, then jittering about where they are by up to 1e-6 and 1e-6 rad
+/// (a solver's pile). Every frame both give the same events (the same
+/// pairs, in the same order, of the same kinds: whether a pair touches
+/// never depends on reuse), and each contact's depth is within the reuse's
+/// bound of the other world's, `2e-5 + 2 * 4e-5` of the pair's size
+/// (taken generously as the larger bounding sphere's diameter) on top of
+/// the `2e-5` either may be above the least.
+#[test]
+fn reused_contacts_keep_the_events_and_the_depth_bound() {
+    let (mut plain, ids, mut rng) = random_world(400, 31);
+    let reuse = 4e-5;
+    let (mut reusing, _, _) = random_world_with(400, 31, WorldConfig::default().with_reuse(reuse));
+    let mut touching = 0;
+    let mut base = Vec::new();
+    for frame in 0..12 {
+        if frame < 4 {
+            step(&mut plain, &ids, &mut rng);
+            base = ids.iter().map(|&id| plain.pose(id).unwrap()).collect();
+        } else {
+            let jittered: Vec<Pose> = base
+                .iter()
+                .map(|p| {
+                    let jitter = (Vec3::new(rng.random(), rng.random(), rng.random()) - 0.5) * 2e-6;
+                    let axis = Vec3::new(rng.random(), rng.random(), 1.0).normalize();
+                    let wobble = Quat::from_axis_angle(axis, 1e-6);
+                    Pose::new(p.position + jitter, (wobble * p.rotation).normalize())
+                })
+                .collect();
+            plain.set_poses(&ids, &jittered).unwrap();
+        }
+        let poses: Vec<Pose> = ids.iter().map(|&id| plain.pose(id).unwrap()).collect();
+        reusing.set_poses(&ids, &poses).unwrap();
+        plain.update();
+        reusing.update();
+        let key = |e: &ContactEvent| (e.kind, e.a, e.b);
+        let (want, got) = (plain.events(), reusing.events());
+        assert_eq!(
+            want.iter().map(key).collect::<Vec<_>>(),
+            got.iter().map(key).collect::<Vec<_>>()
+        );
+        for (w, g) in want.iter().zip(got) {
+            let (Some(cw), Some(cg)) = (w.contact, g.contact) else { continue };
+            touching += 1;
+            let size = |id| 2.0 * plain.shape(id).unwrap().sphere().radius;
+            let bound = (2e-5 + 2e-5 + 2.0 * reuse) * size(w.a).max(size(w.b)) + 1e-6;
+            assert!((cw.depth - cg.depth).abs() <= bound, "frame {frame}: {cw:?} against {cg:?}");
+        }
+    }
+    assert!(touching > 1000, "only {touching} contacts compared");
+}
+
 /// A pair that falls asleep touching is still listed, with the contact it
 /// had when last tested, until a body moves it apart; its contact is the
 /// event's, and reversing the bodies turns the normal.

@@ -52,11 +52,13 @@ pub(crate) struct PyWorld {
 impl PyWorld {
     /// A world with no bodies; `threads` is the number of threads `update`
     /// runs on (by default, one per core); bodies apart by at most `margin`
-    /// are in contact too, with negative depths (`WorldConfig::margin`).
+    /// are in contact too, with negative depths (`WorldConfig::margin`);
+    /// touching pairs that moved by at most `reuse` of their size reuse
+    /// their contact feature (`WorldConfig::reuse`).
     #[new]
-    #[pyo3(signature = (threads = None, margin = 0.0))]
-    fn new(threads: Option<usize>, margin: f32) -> PyResult<Self> {
-        let config = WorldConfig::default().with_margin(margin);
+    #[pyo3(signature = (threads = None, margin = 0.0, reuse = 0.0))]
+    fn new(threads: Option<usize>, margin: f32, reuse: f32) -> PyResult<Self> {
+        let config = WorldConfig::default().with_margin(margin).with_reuse(reuse);
         let config = threads.map_or(config, |n| config.with_threads(n));
         let world = World::with_config(config).map_err(world_error)?;
         Ok(PyWorld { world })

@@ -141,6 +141,43 @@ def test_balls_within_the_margin_are_in_contact_with_their_distance():
         bvol.World(margin=-1.0)
 
 
+def test_reused_contacts_keep_the_pairs_and_the_depth_bound():
+    """Hull boxes resting on a floor, jittering by 1e-6: a world reusing
+    contact features finds the pairs a plain one does, with depths within
+    the reuse's bound of its, frame after frame."""
+    rng = np.random.default_rng(26)
+    n = 200
+    corners = np.array([[x, y, z] for x in (-0.5, 0.5) for y in (-0.5, 0.5) for z in (-0.5, 0.5)], dtype=np.float32)
+    base = np.column_stack([rng.uniform(0, 40, n), np.full(n, 0.99), rng.uniform(0, 40, n)]).astype(np.float32)
+    reuse = 4e-5
+    worlds = [bvol.World(), bvol.World(reuse=reuse)]
+    floors, bodies = [], []
+    for w in worlds:
+        floor = w.add_body(primitive=("box", (25.0, 0.5, 25.0)), pose=((20, 0, 20), (0, 0, 0, 1)), kind="static")
+        floors.append(floor)
+        bodies.append(np.array([w.add_body(vertices=corners, pose=(p, (0, 0, 0, 1))) for p in base], dtype=np.uint64))
+    # The pair's size: the floor's half diagonal.
+    bound = (2e-5 + 2e-5 + 2 * reuse) * float(np.linalg.norm([25.0, 0.5, 25.0]))
+    compared = 0
+    for _ in range(6):
+        positions = base + rng.uniform(-1e-6, 1e-6, base.shape).astype(np.float32)
+        for w, ids in zip(worlds, bodies):
+            w.set_poses(ids, positions)
+            w.update()
+        plain, reusing = worlds
+        assert {tuple(p) for p in plain.pairs().tolist()} == {tuple(p) for p in reusing.pairs().tolist()}
+        for k in range(n):
+            want = plain.contact(floors[0], int(bodies[0][k]))
+            got = reusing.contact(floors[1], int(bodies[1][k]))
+            assert (want is None) == (got is None)
+            if want is not None:
+                assert abs(got["depth"] - want["depth"]) <= bound
+                compared += 1
+    assert compared > 1000
+    with pytest.raises(ValueError, match="reuse"):
+        bvol.World(reuse=-1.0)
+
+
 def test_a_saved_world_runs_on_with_the_same_events():
     rng = np.random.default_rng(23)
     positions, radii = ball_scene(rng, n=300)

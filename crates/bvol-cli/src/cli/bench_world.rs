@@ -15,6 +15,8 @@ use bvol::{BodyDesc, BodyId, FitOptions, FrameStats, Shape, World, WorldConfig};
 use bvol_cli::scenes::{Scene, SceneKind};
 use clap::Args;
 use glam::{Quat, Vec3};
+use rand::rngs::SmallRng;
+use rand::{RngExt, SeedableRng};
 
 /// The world benchmark's options.
 #[derive(Args, Debug)]
@@ -48,6 +50,16 @@ pub struct WorldArgs {
     /// this are in contact too. A body's bounding sphere has radius 0.75.
     #[arg(long, default_value_t = 0.0)]
     margin: f32,
+    /// The world's reuse tolerance (`WorldConfig::reuse`): touching pairs
+    /// that moved by at most this times their size reuse their contact
+    /// feature.
+    #[arg(long, default_value_t = 0.0)]
+    reuse: f32,
+    /// Each frame, every body is set about its scene pose, off by up to this
+    /// times its radius on each axis and turned by this many radians about a
+    /// random axis: a pile as a solver leaves it, jittering by a rounding.
+    #[arg(long, default_value_t = 0.0)]
+    jitter: f32,
 }
 
 /// The radius of a body's bounding sphere in the scene: its boxes are cubes
@@ -106,6 +118,16 @@ fn scaled(shape: &Shape) -> Result<Shape, String> {
     Shape::from_meshes(&meshes, FitOptions::default()).map_err(|e| e.to_string())
 }
 
+/// `pose` off by up to `jitter` times a body's radius on each axis, turned
+/// by `jitter` radians about a random axis.
+fn jittered(pose: &Pose, jitter: f32, rng: &mut SmallRng) -> Pose {
+    let mut unit = || rng.random::<f32>() * 2.0 - 1.0;
+    let off = Vec3::new(unit(), unit(), unit()) * jitter * BODY_RADIUS;
+    let axis = Vec3::new(unit(), unit(), unit()).try_normalize().unwrap_or(Vec3::X);
+    let turn = Quat::from_axis_angle(axis, jitter);
+    Pose::new(pose.position + off, (turn * pose.rotation).normalize())
+}
+
 /// What a run measured: each timed frame's stats, the mean milliseconds per
 /// frame of setting the poses (outside `update`), and of the tree alone.
 struct Measured {
@@ -117,14 +139,16 @@ struct Measured {
 /// Runs the world, then the tree alone on the same leaf boxes.
 fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
     let mut scene = Scene::new(args.scene, args.n, args.seed);
-    let mut world = World::with_config(WorldConfig::default().with_margin(args.margin))
-        .map_err(|e| e.to_string())?;
+    let config = WorldConfig::default().with_margin(args.margin).with_reuse(args.reuse);
+    let mut world = World::with_config(config).map_err(|e| e.to_string())?;
+    let mut rng = SmallRng::seed_from_u64(args.seed);
     let mut ids: Vec<BodyId> = Vec::with_capacity(args.n);
     let spins: Vec<Quat> =
         (0..args.n).map(|i| Quat::from_axis_angle(axis(i as u32), SPIN)).collect();
     let mut rotations: Vec<Quat> =
         (0..args.n).map(|i| Quat::from_axis_angle(axis(!(i as u32)), i as f32)).collect();
     let mut poses: Vec<Pose> = Vec::with_capacity(args.n);
+    let mut centres: Vec<Vec3> = Vec::with_capacity(args.n);
     let mut totals = Vec::with_capacity(args.frames);
     let mut leaves: Vec<Vec<Aabb>> = Vec::new();
     let mut setting = Duration::ZERO;
@@ -132,13 +156,21 @@ fn measure(args: &WorldArgs, shape: Arc<Shape>) -> Result<Measured, String> {
         let boxes = scene.step();
         let first = poses.is_empty();
         for (i, b) in boxes.iter().enumerate() {
-            // A body at rest keeps its pose to the bit.
-            if first || b.center() != poses[i].position {
+            // A body at rest keeps its pose to the bit (or, jittered, its
+            // scene pose).
+            if first || b.center() != centres[i] {
                 rotations[i] = (spins[i] * rotations[i]).normalize();
             }
         }
+        centres.clear();
+        centres.extend(boxes.iter().map(Aabb::center));
         poses.clear();
         poses.extend(boxes.iter().zip(&rotations).map(|(b, &r)| Pose::new(b.center(), r)));
+        if args.jitter > 0.0 {
+            for pose in &mut poses {
+                *pose = jittered(pose, args.jitter, &mut rng);
+            }
+        }
         if f == 0 {
             for p in &poses {
                 ids.push(
@@ -213,7 +245,8 @@ fn print(measured: &Measured, args: &WorldArgs) {
     println!("whole frame\t-\t{total:.3}");
     println!("tree alone (bench pairs)\t-\t{tree_ms:.3}");
     println!(
-        "# n {}, scene {}, {} frames after {} settling, {} threads, margin {}; whole frame / tree alone = {:.2}; \
+        "# n {}, scene {}, {} frames after {} settling, {} threads, margin {}, reuse {}, jitter {}; \
+         whole frame / tree alone = {:.2}; \
          bounds refit {:.1} M bodies/s, set poses + refit {:.1} M bodies/s",
         args.n,
         args.scene,
@@ -221,6 +254,8 @@ fn print(measured: &Measured, args: &WorldArgs) {
         args.settle,
         args.threads,
         args.margin,
+        args.reuse,
+        args.jitter,
         total / tree_ms,
         moved / bounds / 1e3,
         args.n as f64 / (poses_ms + bounds) / 1e3

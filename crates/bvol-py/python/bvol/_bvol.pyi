@@ -187,9 +187,10 @@ class World:
     """Bodies and what touches among them (use `bvol.World`, which adds
     `events` and `ray_cast`)."""
 
-    def __new__(cls, threads: Optional[int] = None, margin: float = 0.0) -> World:
+    def __new__(cls, threads: Optional[int] = None, margin: float = 0.0, reuse: float = 0.0) -> World:
         """A world with no bodies; update runs on `threads` threads (by default, one per core);
-        bodies apart by at most `margin` are in contact too, with negative depths."""
+        bodies apart by at most `margin` are in contact too, with negative depths; touching
+        pairs that moved by at most `reuse` of their size reuse their contact feature."""
     def add_body(
         self,
         *,
