@@ -40,7 +40,9 @@
 //!
 //! A world made with a [`margin`](WorldConfig::margin) also reports bodies
 //! apart by at most that distance, with negative depths (what a solver's
-//! speculative contacts need). Far from the origin, poses go in with f64
+//! speculative contacts need); one made with a [`reuse`](WorldConfig::reuse)
+//! tolerance lets touching pairs that barely moved, as in a solver's
+//! resting pile, reuse their contact features. Far from the origin, poses go in with f64
 //! positions ([`World::set_poses_f64`]) and pairs are tested on positions
 //! relative to one of their bodies. With the `serde` feature,
 //! `World::snapshot` saves a world and `World::from_snapshot` loads it

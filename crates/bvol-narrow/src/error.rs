@@ -158,11 +158,9 @@ impl fmt::Display for NarrowError {
             NarrowError::BadMargin => {
                 write!(f, "the margin must be finite and not negative")
             }
-            NarrowError::BadTolerance => write!(
-                f,
-                "the reuse tolerance must be finite, not negative and at most {:e}",
-                crate::MAX_REUSE
-            ),
+            NarrowError::BadTolerance => {
+                write!(f, "the reuse tolerance must be finite, not negative and at most MAX_REUSE")
+            }
         }
     }
 }

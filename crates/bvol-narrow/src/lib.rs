@@ -11,6 +11,8 @@
 //!   the deciding feature and the last gap measured: a pair that stays apart
 //!   is mostly answered from the bodies' motion alone (the gap less how far
 //!   they can have come together), else at the cost of two support points.
+//!   One made with [`WarmStart::reusing`] also lets a touching pair that
+//!   barely moved reuse its contact feature, within a stated depth bound.
 //! - [`obb_obb`]: the same test and contact on two boxes, without allocating.
 //! - [`sphere_hull`], [`sphere_obb`], [`sphere_sphere`]: closest points.
 //! - [`capsule_capsule`], [`capsule_sphere`], [`capsule_hull`]: exact
@@ -98,6 +100,7 @@ mod part_kind;
 mod plane;
 mod polyhedron;
 mod rest;
+mod rounding;
 mod sat;
 mod segment;
 mod sphere_hull;

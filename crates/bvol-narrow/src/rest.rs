@@ -17,7 +17,7 @@ use bvol_volumes::Pose;
 use glam::{DQuat, DVec3};
 
 use crate::Polyhedron;
-use crate::warm::{ROUNDING, STORED, offset};
+use crate::rounding::{ROUNDING, STORED, offset, up};
 
 /// A touching pair's record of its last full test (stored in f32, as
 /// [`Apart`](crate::warm::Apart) is: 56 bytes).
@@ -88,12 +88,6 @@ impl Rest {
     pub(crate) fn least(&self) -> f64 {
         f64::from(self.least)
     }
-}
-
-/// The least f32 at least `x`.
-fn up(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) < x { y.next_up() } else { y }
 }
 
 #[cfg(test)]

@@ -8,6 +8,7 @@ use glam::{DVec3, Quat, Vec3};
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
 use crate::rest::Rest;
+use crate::rounding::{ROUNDING, STORED, down, offset};
 use crate::sat::{AxisGap, axis_gap, centre_axis, edge_separation, face_separation};
 use crate::topology::Topology;
 use crate::{NarrowError, Polyhedron};
@@ -260,24 +261,6 @@ impl Apart {
         let across = self.axis.as_dvec3().cross(DVec3::new(turn.x, turn.y, turn.z));
         2.0 * (across.length_squared() / (now.length_squared() * then.length_squared())).sqrt()
     }
-}
-
-/// Relative rounding allowed for in [`Apart`]'s f64 sums.
-pub(crate) const ROUNDING: f64 = 16.0 * f64::EPSILON;
-
-/// How far from unit an f32-rounded unit vector's length may be: `2^-23`,
-/// more than the `2^-24` relative rounding of each component gives.
-pub(crate) const STORED: f64 = 1.0 / (1 << 23) as f64;
-
-/// B's position less A's, in f64 (exact from f32).
-pub(crate) fn offset(pose_a: &Pose, pose_b: &Pose) -> DVec3 {
-    pose_b.position.as_dvec3() - pose_a.position.as_dvec3()
-}
-
-/// The greatest f32 at most `x`.
-fn down(x: f64) -> f32 {
-    let y = x as f32;
-    if f64::from(y) > x { y.next_down() } else { y }
 }
 
 /// The cached feature's axis and the exact gap along it between `a` and `b`
