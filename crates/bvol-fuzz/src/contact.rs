@@ -16,8 +16,10 @@ const MAX_HULL_POINTS: usize = 24;
 /// is finite, agrees with the parts' bounding spheres (apart beyond them
 /// means separated), and the other way round gives the same verdict unless
 /// the two are within rounding of touching; a touching pair's placed
-/// spheres and boxes (the World's culling tests) meet; and within a margin
-/// the input's last float gives, the contact agrees (see [`within`]).
+/// spheres and boxes (the World's culling tests) meet; within a margin
+/// the input's next float gives, the contact agrees (see [`within`]); and
+/// reusing features at a tolerance it gives, the answer agrees with a cold
+/// call's after a nudge (see [`reused`]).
 pub fn run(data: &[u8]) {
     let u = &mut Unstructured::new(data);
     let (Ok(a), Ok(b)) = (shape(u), shape(u)) else { return };
@@ -38,6 +40,9 @@ pub fn run(data: &[u8]) {
     check(&backward, &[placed[1], placed[0]]);
     if let Ok(margin) = floats::float(u) {
         within(part_a, &pose_a, part_b, &pose_b, margin, &forward, &placed);
+    }
+    if let (Ok(tolerance), Ok(nudge)) = (floats::float(u), floats::float(u)) {
+        reused((part_a, &pose_a), (part_b, &pose_b), tolerance, nudge, &placed);
     }
     if let Collision::Touching(_) = forward {
         bounds_meet(&a, &pose_a, &b, &pose_b);
@@ -137,6 +142,45 @@ fn within(
             c.points().iter().for_each(|p| finite(p.position, "a near contact's point"));
         }
         (Collision::Separated { .. }, None) => {}
+    }
+}
+
+/// The pair through a warm start reusing touching pairs' features at
+/// `tolerance` (any float): a one-line error for a bad one; else, with B
+/// then moved along x by `nudge` times its bounding radius (any float), the
+/// answer agrees with a cold call's there: the same verdict unless within
+/// rounding of touching, and a depth within the reuse's bound of the cold
+/// one (each within `2e-5 + 2 * tolerance` of the least, of a size taken
+/// generously as the larger bounding diameter).
+fn reused(
+    (a, pose_a): (&Part, &Pose),
+    (b, pose_b): (&Part, &Pose),
+    tolerance: f32,
+    nudge: f32,
+    placed: &[Placed; 2],
+) {
+    let mut warm = match WarmStart::reusing(tolerance) {
+        Ok(warm) => warm,
+        Err(e) => return one_line_error(&e.to_string(), None),
+    };
+    collide_parts(a, pose_a, b, pose_b, &mut warm).expect("accepted above");
+    let moved =
+        Pose::new(pose_b.position + Vec3::X * nudge * placed[1].radius as f32, pose_b.rotation);
+    let Ok(cold) = collide_parts(a, pose_a, b, &moved, &mut WarmStart::default()) else { return };
+    let got = collide_parts(a, pose_a, b, &moved, &mut warm).expect("the cold call took it");
+    let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
+    let depth = |c: &Collision| match c {
+        Collision::Separated { distance, .. } => -f64::from(*distance),
+        Collision::Touching(contact) => f64::from(contact.depth),
+    };
+    if depth(&cold).abs() > slack {
+        assert_eq!(got.is_touching(), cold.is_touching(), "reused {got:?}, cold {cold:?}");
+    }
+    if got.is_touching() && cold.is_touching() {
+        let size = 2.0 * placed[0].radius.max(placed[1].radius);
+        let bound = (4e-5 + 2.0 * f64::from(tolerance)) * size + slack;
+        let off = (depth(&got) - depth(&cold)).abs();
+        assert!(off <= bound, "reused depth {got:?} off the cold {cold:?} by {off}");
     }
 }
 

@@ -79,7 +79,8 @@ pub(crate) enum Feature {
 /// answer does not depend on the cache: the gap along the cached axis and its
 /// support points only let it skip faces and edges that cannot be picked,
 /// which makes touching pairs cheaper too. So the cache never changes whether
-/// a pair is apart or touching, nor any contact; only which separating axis a
+/// a pair is apart or touching, nor (unless it reuses features, below) any
+/// contact; only which separating axis a
 /// pair that is apart is reported with, and with what lower bound of the gap
 /// along it. A cache used with other shapes than it was made with is
 /// harmless: the bound is kept with the shapes' ids (a clone shares its
