@@ -58,8 +58,9 @@ impl Rest {
     /// B's points seen from A are `Q y + t` with `Q = A^-1 B` and `t =
     /// A^-1 (p_B - p_A)`; they moved by at most `|t - t_then| + |Q -
     /// Q_then| |y|`, and `|Q - Q_then|` is `2 sin(theta / 2)` for the angle
-    /// of `Q Q_then^-1`: twice the length of its vector part. A's points
-    /// seen from B likewise, with B's reach.
+    /// of `Q Q_then^-1`: twice the length of its vector part, `|y|` at
+    /// most B's reach. A's points seen from B likewise, with A's reach (the
+    /// turn is the same angle).
     pub(crate) fn motion(
         &self,
         (a, pose_a): (&Polyhedron, &Pose),
