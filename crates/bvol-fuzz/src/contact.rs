@@ -48,20 +48,25 @@ pub fn run(data: &[u8]) {
         bounds_meet(&a, &pose_a, &b, &pose_b);
     }
     let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
-    let margin = |c: &Collision| match c {
-        Collision::Separated { distance, .. } => -(*distance as f64),
-        Collision::Touching(contact) => contact.depth as f64,
-    };
-    if margin(&forward) > slack || margin(&forward) < -slack {
+    if depth(&forward) > slack || depth(&forward) < -slack {
         let same = matches!(
             (&forward, &backward),
             (Collision::Separated { .. }, Collision::Separated { .. })
                 | (Collision::Touching(_), Collision::Touching(_))
         );
         assert!(
-            same || margin(&backward).abs() <= slack,
+            same || depth(&backward).abs() <= slack,
             "{forward:?} one way, {backward:?} the other"
         );
+    }
+}
+
+/// An answer's depth, signed: a touching pair's depth, or minus an apart
+/// pair's distance.
+fn depth(c: &Collision) -> f64 {
+    match c {
+        Collision::Separated { distance, .. } => -f64::from(*distance),
+        Collision::Touching(contact) => f64::from(contact.depth),
     }
 }
 
@@ -169,10 +174,6 @@ fn reused(
     let Ok(cold) = collide_parts(a, pose_a, b, &moved, &mut WarmStart::default()) else { return };
     let got = collide_parts(a, pose_a, b, &moved, &mut warm).expect("the cold call took it");
     let slack = 1e-4 * placed[0].scale.max(placed[1].scale);
-    let depth = |c: &Collision| match c {
-        Collision::Separated { distance, .. } => -f64::from(*distance),
-        Collision::Touching(contact) => f64::from(contact.depth),
-    };
     if depth(&cold).abs() > slack {
         assert_eq!(got.is_touching(), cold.is_touching(), "reused {got:?}, cold {cold:?}");
     }
