@@ -8,7 +8,7 @@ use glam::DVec3;
 
 use crate::arc::Arc;
 use crate::box_numbering::BoxNumbering;
-use crate::cluster::{Cap, Cluster};
+use crate::cluster::Cluster;
 use crate::lanes::{Witness, live_mask};
 use crate::plane::Plane;
 use crate::topology::Topology;
@@ -43,12 +43,6 @@ pub(crate) trait Convex {
     /// The Gauss-map arc of edge `e` (an index into `topology().edges`).
     fn arc(&self, e: u32) -> Arc;
 
-    /// The cap and depth of arc `e` alone: what its first bounds read.
-    fn arc_cap(&self, e: u32) -> (Cap, f64) {
-        let arc = self.arc(e);
-        (arc.cap, arc.inner)
-    }
-
     /// The faces grouped by the directions of their normals.
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
 
@@ -79,13 +73,10 @@ pub(crate) trait Convex {
         bar: f64,
     ) -> u64 {
         live_mask(run, |e| {
-            let (cap, inner) = self.arc_cap(e);
-            witnesses.iter().all(|w| cap.max(w.at, w.length) - inner - w.less > bar)
+            let arc = self.arc(e);
+            witnesses.iter().all(|w| arc.cap.max(w.at, w.length) - arc.inner - w.less > bar)
         })
     }
-
-    /// The edges grouped by the directions of their arcs.
-    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
 
     /// The vertex least far along `dir`, and `dir . vertex` (its support
     /// point against `dir`), searched from vertex `start`. The search may

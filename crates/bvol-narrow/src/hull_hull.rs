@@ -25,13 +25,14 @@ use crate::{Body, Collision, NarrowError, Polyhedron, Pose};
 const PREFER_ABS: f64 = 2e-5;
 
 /// How deep (along the centre line, relative to the shapes' size) a cold
-/// pair must overlap for its face and edge queries to take their bounds as
-/// bit masks, a run of faces or arcs at a time without a branch each,
-/// instead of one branch an item. Deep, the bounds are weak and which items
-/// they rule out is unpredictable, so branches mispredict and masks win.
-/// Near touching, and on warm calls (whose witnesses lie near the contact),
-/// the first bound rules out most items, the branches are predictable, and
-/// masks would do the work of every item for nothing.
+/// pair must overlap for its face queries to take their bounds as bit
+/// masks, a run of faces at a time without a branch each, instead of one
+/// branch a face. Deep, the bounds are weak and which faces they rule out is
+/// unpredictable, so branches mispredict and masks win. Near touching, and
+/// on warm calls (whose witnesses lie near the contact), the first bound
+/// rules out most faces, the branches are predictable, and masks would do
+/// the work of every face for nothing. (The edge query always takes its cap
+/// bounds as masks: see `edge_query`.)
 const MASK_DEPTH: f64 = 0.25;
 
 /// Whether two convex polyhedra touch, and how.
@@ -274,9 +275,10 @@ fn full_query<A: Convex, B: Convex>(
     // else along the centre line, are the witnesses of the bounds.
     let w = cached.unwrap_or(c);
     let floor = c.gap.max(w.gap) - 2.0 * slack;
-    // A cold pair sunk deep into each other leaves many faces and arcs to
-    // the bounds, which rule them out by data the branch predictor has not
-    // seen: there the queries take their bounds as masks (see MASK_DEPTH).
+    // A cold pair sunk deep into each other leaves many faces to the
+    // bounds, which rule them out by data the branch predictor has not
+    // seen: there the face queries take their bounds as masks (see
+    // MASK_DEPTH).
     let masks = cached.is_none() && c.gap < -MASK_DEPTH * a.size().max(b.size());
     let face_a = face_query(a, b, rel, a.face_seed(c.axis), floor, w.low_b, masks);
     if face_a.separation > 0.0 {
@@ -289,7 +291,7 @@ fn full_query<A: Convex, B: Convex>(
         return pair.separated(Choice::FaceB(face_b));
     }
     let deepest_face = face_a.separation.max(face_b.separation);
-    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b, masks);
+    let edge = edge_query(a, b, rel, floor.max(deepest_face), w.low_b);
     if let Some(e) = edge.filter(|e| e.separation > 0.0) {
         return pair.separated(Choice::Edges(e));
     }

@@ -55,9 +55,6 @@ pub struct Polyhedron {
     pub(crate) inner_ball: (DVec3, f64),
     /// The Gauss-map arc of each edge of `topology.edges`.
     pub(crate) arcs: Vec<Arc>,
-    /// Each arc's cap and depth, apart: the edge query's first bounds read
-    /// only these, of every arc.
-    pub(crate) arc_caps: Vec<(Cap, f64)>,
     /// The faces' normals (as caps of no radius) and depths on f32 lanes,
     /// four a block: the deep cold face queries' first bounds.
     pub(crate) face_lanes: Vec<CapLanes>,
@@ -65,8 +62,6 @@ pub struct Polyhedron {
     pub(crate) arc_lanes: Vec<CapLanes>,
     /// The faces, numbered so that those facing alike are consecutive, in groups.
     pub(crate) face_clusters: Vec<Cluster>,
-    /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
-    pub(crate) edge_clusters: Vec<Cluster>,
     /// The lowest vertex along each of the grid directions of
     /// [`seed_slot`].
     pub(crate) seeds: [u32; SEEDS],
@@ -178,11 +173,12 @@ impl Polyhedron {
                 Arc::new(face(topology.half_edge(h).face), face(topology.twin_face(h)), centre)
             })
             .collect();
-        let (edge_order, edge_clusters) =
-            group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
+        // Edges whose arcs point alike are made consecutive: the edge query
+        // takes the last arc's support point as the next arc's first witness.
+        let (edge_order, _) = group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
         let arcs: Vec<Arc> = edge_order.iter().map(|&e| arcs[e as usize]).collect();
-        let arc_caps: Vec<(Cap, f64)> = arcs.iter().map(|a| (a.cap, a.inner)).collect();
+        let arc_lanes = CapLanes::pack(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         // First on ties, so the grid's centre slot (no direction) holds 0.
         let first_min = |m: (u32, f64), x: (u32, f64)| if x.1 < m.1 { x } else { m };
         let seeds = std::array::from_fn(|slot| {
@@ -210,10 +206,8 @@ impl Polyhedron {
             inner_ball: (centre, radius.max(0.0)),
             arcs,
             face_lanes: CapLanes::pack(&face_caps),
-            arc_lanes: CapLanes::pack(&arc_caps),
-            arc_caps,
+            arc_lanes,
             face_clusters,
-            edge_clusters,
             seeds,
             face_seeds,
             box_shape,
@@ -292,10 +286,6 @@ impl Convex for Polyhedron {
         self.arcs[e as usize]
     }
 
-    fn arc_cap(&self, e: u32) -> (Cap, f64) {
-        self.arc_caps[e as usize]
-    }
-
     fn face_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
         self.face_clusters.iter().cloned()
     }
@@ -318,10 +308,6 @@ impl Convex for Polyhedron {
         bar: f64,
     ) -> u64 {
         lanes_left(&self.arc_lanes, run, witnesses, 2.0 * self.size, bar)
-    }
-
-    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
-        self.edge_clusters.iter().cloned()
     }
 }
 

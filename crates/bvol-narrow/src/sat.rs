@@ -8,7 +8,6 @@
 
 use glam::DVec3;
 
-use crate::cluster::Cap;
 use crate::convex::Convex;
 use crate::isometry::DIsometry3;
 use crate::lanes::{Witness, runs, set_bits};
@@ -262,19 +261,18 @@ impl FaceSearch {
 /// can, for a point `witness` of B in A's space ([`Arc::max`]). Cheaper bounds
 /// go first: A's inner centre `c_A` is at least [`Arc::inner`] behind the edge
 /// along the arc, and the arc lies in its cap, so `cap max of (c_B - c_A) -
-/// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too; and
-/// the same with a cluster's cap and depth bound a whole cluster of arcs (a
-/// lone arc's own bounds are tighter, so its cluster's are not tested). Of
-/// the arc's own bounds, the last arc's support point, a point of B low
-/// along the arcs near that one, goes first: consecutive arcs of a cluster
-/// point alike, so it rules out most arcs before any climb, and at the cost
-/// of one dot product. Last, before any step is walked, B's support point against `n1`, where the walk
-/// starts, is a witness exact at one end of the arc.
-///
-/// With `masks` the query takes the two cap bounds of a run of up to 64 arcs
-/// without a branch, as a bit mask of the arcs left, as the face query does
-/// (for the same reason: deep, which arcs fall is unpredictable); else a
-/// branch an arc.
+/// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too. Those
+/// two cap bounds are taken for a run of up to 64 arcs at a time on f32
+/// lanes, without a branch, as a bit mask of the arcs left: which arcs they
+/// rule out changes from pair to pair, so a branch an arc mispredicts, near
+/// touching as much as deep (unlike the face query's first bound, the start
+/// point's distance, which rules out most faces of a pair near touching).
+/// Of the arc's own bounds, the last arc's support point, a point of B low
+/// along the arcs near that one, goes first: arcs are ordered so that
+/// consecutive ones point alike, so it rules out most arcs before any climb,
+/// and at the cost of one dot product. Last, before any step is walked, B's
+/// support point against `n1`, where the walk starts, is a witness exact at
+/// one end of the arc.
 ///
 /// [`Arc::max`]: crate::arc::Arc::max
 /// [`Arc::inner`]: crate::arc::Arc::inner
@@ -284,7 +282,6 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     rel: &DIsometry3,
     floor: f64,
     witness: DVec3,
-    masks: bool,
 ) -> Option<EdgeQuery> {
     let (ta, tb) = (a.topology(), b.topology());
     let centre_a = a.inner_ball().0;
@@ -302,10 +299,6 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     let slack = SUPPORT_SLACK * a.size().max(b.size());
     // The bar a pair must beat: the best so far, and the floor.
     let bar_of = |best: Option<EdgeQuery>| best.map_or(floor, |q| q.separation.max(floor));
-    let beaten = |cap: &Cap, inner: f64, bar: f64| {
-        cap.max(witnessed, witnessed_length) - inner <= bar
-            || cap.max(ball, ball_length) - inner - radius_b <= bar
-    };
     // One arc of A past its cap bounds: its own bounds, then the walk.
     // True when a separating pair was found (the query stops there).
     let arc_step = |e: u32, best: &mut Option<EdgeQuery>, start: &mut Option<(u32, DVec3)>| {
@@ -373,27 +366,10 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
         }
         false
     };
-    if masks {
-        // Sunk deep, as in the face query: every arc's cap bounds on
-        // lanes, a run at a time, no cluster tested.
-        for run in runs(0..ta.edges.len() as u32) {
-            let live = a.arcs_left(run.clone(), &witnesses, bar_of(best));
-            for e in set_bits(run.start, live) {
-                if arc_step(e, &mut best, &mut start) {
-                    return best;
-                }
-            }
-        }
-        return best;
-    }
-    for cluster in a.edge_clusters() {
-        let bar = bar_of(best);
-        if cluster.is_group() && beaten(&cluster.cap, cluster.inner, bar) {
-            continue;
-        }
-        for e in cluster.members {
-            let (cap, inner) = a.arc_cap(e);
-            if !beaten(&cap, inner, bar_of(best)) && arc_step(e, &mut best, &mut start) {
+    for run in runs(0..ta.edges.len() as u32) {
+        let live = a.arcs_left(run.clone(), &witnesses, bar_of(best));
+        for e in set_bits(run.start, live) {
+            if arc_step(e, &mut best, &mut start) {
                 return best;
             }
         }
@@ -574,7 +550,7 @@ pub(crate) mod tests {
 
     /// The Gauss-map walk finds the same greatest edge separation as testing
     /// every pair with IsMinkowskiFace, on overlapping random hulls (where no
-    /// early exit cuts either short), with the bounds as masks or not.
+    /// early exit cuts either short).
     #[test]
     fn edge_walk_matches_every_pair_tested() {
         let mut state = 42;
@@ -583,10 +559,7 @@ pub(crate) mod tests {
             let (a, b) = (cloud(&mut state, 4 + case % 40), cloud(&mut state, 4 + case % 23));
             let rel = random_isometry(&mut state, 0.6);
             let witness = rel.apply(b.inner_ball().0);
-            let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, true);
-            // With the cap bounds as masks or a branch an arc, the same pair.
-            let warm = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness, false);
-            assert_eq!(walked, warm, "case {case}");
+            let walked = edge_query(&a, &b, &rel, f64::NEG_INFINITY, witness);
             let walked = walked.map(|q| q.separation);
             let every = brute_force_edge_query(&a, &b, &rel);
             match (walked, every) {
