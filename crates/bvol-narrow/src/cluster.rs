@@ -1,6 +1,5 @@
 //! Directions grouped into caps on the unit sphere, so that a query can pass
-//! over a whole group of faces with one test; edges are ordered by the same
-//! grouping of their arcs' caps.
+//! over a whole group of faces or edge arcs of the Gauss map with one test.
 
 use std::ops::Range;
 
@@ -55,16 +54,16 @@ impl Cap {
     }
 }
 
-/// A group of faces whose normals lie in one cap, with the least depth of
-/// the shape's inner centre behind any of them: a query bounds the whole
-/// group by those two numbers.
+/// A group of faces or edges whose directions (face normals, or edge arcs)
+/// lie in one cap, with the least depth of the shape's inner centre behind
+/// any of them: a query bounds the whole group by those two numbers.
 #[derive(Clone, Debug, PartialEq)]
 pub(crate) struct Cluster {
     /// The cap holding every member's direction.
     pub cap: Cap,
     /// The least depth of the inner centre behind a member.
     pub inner: f64,
-    /// The members: a run of face indices.
+    /// The members: a run of face or edge indices.
     pub members: Range<u32>,
 }
 

@@ -78,6 +78,9 @@ pub(crate) trait Convex {
         })
     }
 
+    /// The edges grouped by the directions of their arcs.
+    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_;
+
     /// The vertex least far along `dir`, and `dir . vertex` (its support
     /// point against `dir`), searched from vertex `start`. The search may
     /// stop at the first vertex it meets at or below `limit`, when the caller

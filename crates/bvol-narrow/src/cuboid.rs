@@ -74,6 +74,13 @@ impl Convex for Cuboid {
         })
     }
 
+    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
+        self.unit.edge_clusters.iter().map(|c| Cluster {
+            inner: c.members.clone().map(|e| self.arc(e).inner).fold(f64::INFINITY, f64::min),
+            ..c.clone()
+        })
+    }
+
     /// The corner against `dir` on every axis, at once: the unit cube's seed
     /// for the diagonal of `dir`'s signs.
     fn support_min(&self, dir: DVec3, _start: u32, _limit: f64) -> (u32, f64) {

@@ -62,6 +62,8 @@ pub struct Polyhedron {
     pub(crate) arc_lanes: Vec<CapLanes>,
     /// The faces, numbered so that those facing alike are consecutive, in groups.
     pub(crate) face_clusters: Vec<Cluster>,
+    /// The edges, ordered so that those whose arcs point alike are consecutive, in groups.
+    pub(crate) edge_clusters: Vec<Cluster>,
     /// The lowest vertex along each of the grid directions of
     /// [`seed_slot`].
     pub(crate) seeds: [u32; SEEDS],
@@ -173,9 +175,8 @@ impl Polyhedron {
                 Arc::new(face(topology.half_edge(h).face), face(topology.twin_face(h)), centre)
             })
             .collect();
-        // Edges whose arcs point alike are made consecutive: the edge query
-        // takes the last arc's support point as the next arc's first witness.
-        let (edge_order, _) = group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
+        let (edge_order, edge_clusters) =
+            group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
         let arcs: Vec<Arc> = edge_order.iter().map(|&e| arcs[e as usize]).collect();
         let arc_lanes = CapLanes::pack(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
@@ -208,6 +209,7 @@ impl Polyhedron {
             face_lanes: CapLanes::pack(&face_caps),
             arc_lanes,
             face_clusters,
+            edge_clusters,
             seeds,
             face_seeds,
             box_shape,
@@ -308,6 +310,10 @@ impl Convex for Polyhedron {
         bar: f64,
     ) -> u64 {
         lanes_left(&self.arc_lanes, run, witnesses, 2.0 * self.size, bar)
+    }
+
+    fn edge_clusters(&self) -> impl Iterator<Item = Cluster> + '_ {
+        self.edge_clusters.iter().cloned()
     }
 }
 

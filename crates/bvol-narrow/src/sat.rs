@@ -253,25 +253,26 @@ impl FaceSearch {
 /// meets each region at most once: the work is the number of crossings, about
 /// `E_A + E_B` in all, plus one step per edge of A.
 ///
-/// Most arcs of A are skipped unwalked. Along any direction `d` of A's arc
-/// the separation is `d . (B's lowest point) - d . (A's edge)`, and B's lowest
+/// Most arcs of A are skipped unwalked. Along any direction `d` of A's arc the
+/// separation is `d . (B's lowest point) - d . (A's edge)`, and B's lowest
 /// point is at most B's inner centre less its radius; so an arc can only beat
 /// the bar if `d . (c_B - edge) - r_B` can, somewhere on it, and (B's lowest
 /// point being at most as low as any of its points) if `d . (witness - edge)`
 /// can, for a point `witness` of B in A's space ([`Arc::max`]). Cheaper bounds
 /// go first: A's inner centre `c_A` is at least [`Arc::inner`] behind the edge
 /// along the arc, and the arc lies in its cap, so `cap max of (c_B - c_A) -
-/// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too. Those
-/// two cap bounds are taken for a run of up to 64 arcs at a time on f32
-/// lanes, without a branch, as a bit mask of the arcs left: which arcs they
-/// rule out changes from pair to pair, so a branch an arc mispredicts, near
-/// touching as much as deep (unlike the face query's first bound, the start
-/// point's distance, which rules out most faces of a pair near touching).
-/// Of the arc's own bounds, the last arc's support point, a point of B low
-/// along the arcs near that one, goes first: arcs are ordered so that
-/// consecutive ones point alike, so it rules out most arcs before any climb,
-/// and at the cost of one dot product. Last, before any step is walked, B's
-/// support point against `n1`, where the walk starts, is a witness exact at
+/// inner - r_B` and `cap max of (witness - c_A) - inner` bound it too; and the
+/// same with a cluster's cap and depth bound a whole cluster of arcs. Within a
+/// cluster that its bounds leave, the two cap bounds are taken for a run of up
+/// to 64 arcs at a time on f32 lanes, without a branch, as a bit mask of the
+/// arcs left: which arcs they rule out changes from pair to pair, so a branch
+/// an arc mispredicts, near touching as much as deep (unlike the face query's
+/// first bound, the start point's distance, which rules out most faces of a
+/// pair near touching). Of the arc's own bounds, the last arc's support point,
+/// a point of B low along the arcs near that one, goes first: arcs are ordered
+/// so that consecutive ones point alike, so it rules out most arcs before any
+/// climb, and at the cost of one dot product. Last, before any step is walked,
+/// B's support point against `n1`, where the walk starts, is a witness exact at
 /// one end of the arc.
 ///
 /// [`Arc::max`]: crate::arc::Arc::max
@@ -366,11 +367,20 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
         }
         false
     };
-    for run in runs(0..ta.edges.len() as u32) {
-        let live = a.arcs_left(run.clone(), &witnesses, bar_of(best));
-        for e in set_bits(run.start, live) {
-            if arc_step(e, &mut best, &mut start) {
-                return best;
+    for cluster in a.edge_clusters() {
+        let bar = bar_of(best);
+        if cluster.is_group()
+            && (cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
+                || cluster.cap.max(ball, ball_length) - cluster.inner - radius_b <= bar)
+        {
+            continue;
+        }
+        for run in runs(cluster.members) {
+            let live = a.arcs_left(run.clone(), &witnesses, bar_of(best));
+            for e in set_bits(run.start, live) {
+                if arc_step(e, &mut best, &mut start) {
+                    return best;
+                }
             }
         }
     }

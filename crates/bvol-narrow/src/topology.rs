@@ -37,7 +37,7 @@ pub(crate) struct Topology {
     /// The first half-edge of each face.
     pub face_edges: Vec<u32>,
     /// Each undirected edge once, as its half-edge whose face has the lower
-    /// index; a polyhedron orders them by the direction of their arcs.
+    /// index; a polyhedron orders them by direction (see its edge clusters).
     pub edges: Vec<u32>,
 }
 
