@@ -247,7 +247,10 @@ fn refit_run<B: Bound>(
             && let Some(ahead) = x.checked_sub(PREFETCH_AHEAD)
         {
             for c in nodes[ahead].child {
-                if let Some(b) = all.get(c.index() as usize).filter(|_| c.is_leaf()) {
+                // An internal child asks for the first bound: no branch on
+                // which it is, which the predictor could not learn.
+                let id = if c.is_node() { 0 } else { c.index() as usize };
+                if let Some(b) = all.get(id) {
                     prefetch(b);
                 }
             }
