@@ -123,28 +123,47 @@ impl<B: Bound> Tree<B> {
     /// jumping every frame), moving every node back each frame would cost
     /// more than it saves.
     fn refit_scattered(&mut self, bounds: Option<&[B]>, found: &mut Refit) {
-        let mut order = Vec::with_capacity(self.nodes.len() - self.free_count);
-        let mut stack = vec![self.root.index()];
-        while let Some(x) = stack.pop() {
-            order.push(x);
+        let nodes = &mut self.nodes;
+        let mut order = vec![0; nodes.len() - self.free_count];
+        // Every node in the order once: a walk whose pushes are written
+        // unconditionally and counted by whether they are nodes, which no
+        // branch predictor could learn.
+        let mut stack = vec![0; order.len() + 2];
+        stack[0] = self.root.index();
+        let (mut top, mut len) = (1, 0);
+        while top > 0 {
+            top -= 1;
+            let x = stack[top];
+            order[len] = x;
+            len += 1;
             // Second child pushed first: the walk follows the memory order of
             // a mostly preorder layout.
-            for c in self.nodes[x as usize].child.into_iter().rev() {
-                if c.is_node() {
-                    stack.push(c.index());
-                }
+            for c in nodes[x as usize].child.into_iter().rev() {
+                stack[top] = c.index();
+                top += usize::from(c.is_node());
             }
         }
         let mut inner = 0.0;
-        for &x in order.iter().rev() {
-            let child = |c: Ref| c.is_node().then(|| self.nodes[c.index() as usize].merged());
-            let [c0, c1] = self.nodes[x as usize].child;
+        for k in (0..len).rev() {
+            // As in `refit_run`, asked for ahead: the nodes are where the
+            // order puts them, mostly in a row.
+            if let Some(&far) = k.checked_sub(NODES_AHEAD).map(|far| &order[far]) {
+                prefetch(&nodes[far as usize]);
+            }
+            if let Some(all) = bounds
+                && let Some(&ahead) = k.checked_sub(PREFETCH_AHEAD).map(|ahead| &order[ahead])
+            {
+                ask_leaf_bounds(&nodes[ahead as usize], all);
+            }
+            let x = order[k];
+            let child = |c: Ref| c.is_node().then(|| nodes[c.index() as usize].merged());
+            let [c0, c1] = nodes[x as usize].child;
             let children = [child(c0), child(c1)];
             // In place: a copy on the stack, written back, would make
             // the refit's speed depend on where the stack falls against
             // the arrays modulo 4 KiB (its stores can alias the next
             // node's loads), and so differ from build to build.
-            inner += refit_node(&mut self.nodes[x as usize], children, bounds, found);
+            inner += refit_node(&mut nodes[x as usize], children, bounds, found);
         }
         found.inner += inner;
     }
@@ -246,14 +265,7 @@ fn refit_run<B: Bound>(
         if let Some(all) = bounds
             && let Some(ahead) = x.checked_sub(PREFETCH_AHEAD)
         {
-            for c in nodes[ahead].child {
-                // An internal child asks for the first bound: no branch on
-                // which it is, which the predictor could not learn.
-                let id = if c.is_node() { 0 } else { c.index() as usize };
-                if let Some(b) = all.get(id) {
-                    prefetch(b);
-                }
-            }
+            ask_leaf_bounds(&nodes[ahead], all);
         }
         let (head, tail) = nodes.split_at_mut(x + 1);
         let node = &mut head[x];
@@ -266,6 +278,19 @@ fn refit_run<B: Bound>(
         inner += refit_node(node, children, bounds, found);
     }
     found.inner += inner;
+}
+
+/// Asks for the bounds in `all` of the leaves among `node`'s children, to be
+/// read a few nodes later. An internal child asks for the first bound: no
+/// branch on which it is, which no predictor could learn.
+#[inline]
+fn ask_leaf_bounds<B: Bound>(node: &Node<B>, all: &[B]) {
+    for c in node.child {
+        let id = if c.is_node() { 0 } else { c.index() as usize };
+        if let Some(b) = all.get(id) {
+            prefetch(b);
+        }
+    }
 }
 
 /// Gives a leaf stored with bound `old` its `new` one, unless it jumped
