@@ -74,7 +74,7 @@ pub(crate) trait Convex {
     ) -> u64 {
         live_mask(run, |e| {
             let arc = self.arc(e);
-            witnesses.iter().all(|w| arc.cap.max(w.at, w.length) - arc.inner - w.less > bar)
+            witnesses.iter().all(|w| w.bound(&arc.cap, arc.inner) > bar)
         })
     }
 

@@ -82,6 +82,15 @@ pub(crate) struct Witness {
     pub less: f64,
 }
 
+impl Witness {
+    /// The bound it gives an item (or a cluster of items) of cap `cap` and
+    /// depth `depth`: what [`lanes_left`] takes on lanes, in f64.
+    #[inline]
+    pub(crate) fn bound(&self, cap: &Cap, depth: f64) -> f64 {
+        cap.max(self.at, self.length) - depth - self.less
+    }
+}
+
 /// A [`Witness`] spread over the lanes.
 #[derive(Clone, Copy, Debug)]
 struct LaneWitness {
@@ -178,8 +187,7 @@ mod tests {
             // bound, where f32 rounding alone would rule it out.
             let bound = |i: u32| {
                 let (cap, inner) = items[i as usize];
-                let by = |w: &Witness| cap.max(w.at, w.length) - inner - w.less;
-                by(&witnesses[0]).min(by(&witnesses[1]))
+                witnesses[0].bound(&cap, inner).min(witnesses[1].bound(&cap, inner))
             };
             let bar = if round % 2 == 0 {
                 bound(run.start + (next(&mut state) * run.len() as f64) as u32) - 1e-12 * scale

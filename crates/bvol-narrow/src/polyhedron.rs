@@ -175,11 +175,11 @@ impl Polyhedron {
                 Arc::new(face(topology.half_edge(h).face), face(topology.twin_face(h)), centre)
             })
             .collect();
-        let (edge_order, edge_clusters) =
-            group(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
+        let arc_caps: Vec<(Cap, f64)> = arcs.iter().map(|a| (a.cap, a.inner)).collect();
+        let (edge_order, edge_clusters) = group(&arc_caps);
+        let arc_caps: Vec<(Cap, f64)> = edge_order.iter().map(|&e| arc_caps[e as usize]).collect();
         topology.edges = edge_order.iter().map(|&e| topology.edges[e as usize]).collect();
         let arcs: Vec<Arc> = edge_order.iter().map(|&e| arcs[e as usize]).collect();
-        let arc_lanes = CapLanes::pack(&arcs.iter().map(|a| (a.cap, a.inner)).collect::<Vec<_>>());
         // First on ties, so the grid's centre slot (no direction) holds 0.
         let first_min = |m: (u32, f64), x: (u32, f64)| if x.1 < m.1 { x } else { m };
         let seeds = std::array::from_fn(|slot| {
@@ -207,7 +207,7 @@ impl Polyhedron {
             inner_ball: (centre, radius.max(0.0)),
             arcs,
             face_lanes: CapLanes::pack(&face_caps),
-            arc_lanes,
+            arc_lanes: CapLanes::pack(&arc_caps),
             face_clusters,
             edge_clusters,
             seeds,

@@ -140,13 +140,13 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
     // as most do; testing it here first spares the search's setup.
     let start_point = rel.apply(other.vertex(best.support));
     let mut search = FaceSearch { best, start: best.support, start_point, floor };
+    let witnesses = [
+        Witness { at: witnessed, length: witnessed_length, less: 0.0 },
+        Witness { at: ball, length: ball_length, less: radius },
+    ];
     if masks {
         // Sunk deep, the cluster bounds rule out few faces and mispredict:
         // every face's three bounds are taken on lanes, a run at a time.
-        let witnesses = [
-            Witness { at: witnessed, length: witnessed_length, less: 0.0 },
-            Witness { at: ball, length: ball_length, less: radius },
-        ];
         for run in runs(0..reference.topology().face_count() as u32) {
             if search.best.separation > 0.0 {
                 break;
@@ -174,8 +174,7 @@ pub(crate) fn face_query<R: Convex, O: Convex>(
         let bar = search.bar();
         if cluster.is_group()
             && (search.best.separation > 0.0
-                || cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
-                || cluster.cap.max(ball, ball_length) - cluster.inner - radius <= bar)
+                || witnesses.iter().any(|w| w.bound(&cluster.cap, cluster.inner) <= bar))
         {
             continue;
         }
@@ -370,8 +369,7 @@ pub(crate) fn edge_query<A: Convex, B: Convex>(
     for cluster in a.edge_clusters() {
         let bar = bar_of(best);
         if cluster.is_group()
-            && (cluster.cap.max(witnessed, witnessed_length) - cluster.inner <= bar
-                || cluster.cap.max(ball, ball_length) - cluster.inner - radius_b <= bar)
+            && witnesses.iter().any(|w| w.bound(&cluster.cap, cluster.inner) <= bar)
         {
             continue;
         }
