@@ -2,6 +2,13 @@
 //! time a [`PairCache`](crate::PairCache) or [`PairSet`](crate::PairSet)
 //! caught up, so it retests only those.
 
+use bvol_volumes::prefetch;
+
+use crate::tuning::PAIRS_AHEAD;
+
+/// Pairs in a 64-byte cache line.
+const LINE: usize = 8;
+
 /// Above this fraction of changed leaves, a pair list is recomputed by one
 /// tree self-search instead of querying each changed leaf: the queries'
 /// cost grows with the leaves changed, and reaches the full search's a
@@ -51,6 +58,49 @@ impl Changes {
         self.all || self.bits.get(id as usize / 64).is_some_and(|w| w & (1 << (id % 64)) != 0)
     }
 
+    /// Drops from `pairs` those that touch a changed id, keeping the others
+    /// in order, and hands each dropped pair to `dropped`.
+    ///
+    /// The pairs are read a cache line (eight pairs) at a time: a line with
+    /// no changed id, most of them, moves as a block without a branch a
+    /// pair, and past the caches the line [`PAIRS_AHEAD`] pairs on is asked
+    /// for, which the processor's own read-ahead does not do for this loop.
+    pub(crate) fn drop_touched(
+        &self,
+        pairs: &mut Vec<(u32, u32)>,
+        mut dropped: impl FnMut((u32, u32)),
+    ) {
+        let bit = |id: u32| {
+            let word = self.bits.get(id as usize / 64).map_or(0, |w| w >> (id % 64));
+            (word & 1) | u64::from(self.all)
+        };
+        let mut kept = 0;
+        for start in (0..pairs.len()).step_by(LINE) {
+            let end = (start + LINE).min(pairs.len());
+            if let Some(ahead) = pairs.get(start + PAIRS_AHEAD) {
+                prefetch(ahead);
+            }
+            let touched = pairs[start..end].iter().fold(0, |t, &(a, b)| t | bit(a) | bit(b));
+            if touched == 0 {
+                if kept < start {
+                    pairs.copy_within(start..end, kept);
+                }
+                kept += end - start;
+                continue;
+            }
+            for i in start..end {
+                let pair = pairs[i];
+                let touched = bit(pair.0) | bit(pair.1);
+                pairs[kept] = pair;
+                kept += (touched ^ 1) as usize;
+                if touched != 0 {
+                    dropped(pair);
+                }
+            }
+        }
+        pairs.truncate(kept);
+    }
+
     /// Whether few enough of `len` leaves changed that querying each costs
     /// less than searching all pairs again.
     pub(crate) fn few(&self, len: usize) -> bool {
@@ -74,5 +124,43 @@ impl Changes {
     /// Bytes held.
     pub(crate) fn memory_bytes(&self) -> usize {
         self.ids.capacity() * 4 + self.bits.capacity() * 8
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Pairs of ids below 100, some runs of lines untouched and some not.
+    fn pairs(len: usize) -> Vec<(u32, u32)> {
+        (0..len).map(|i| ((i * 7 % 100) as u32, ((i * 13 + 1) % 100) as u32)).collect()
+    }
+
+    #[test]
+    fn drop_touched_keeps_the_untouched_pairs_in_order() {
+        let marked = [3, 17, 64, 99];
+        let mut changes = Changes::default();
+        changes.grow(100);
+        for id in marked {
+            changes.mark(id);
+        }
+        for len in [0, 1, 7, 8, 9, 31, 300] {
+            let all = pairs(len);
+            let (keep, drop): (Vec<_>, Vec<_>) =
+                all.iter().partition(|(a, b)| !marked.contains(a) && !marked.contains(b));
+            let (mut kept, mut dropped) = (all.clone(), Vec::new());
+            changes.drop_touched(&mut kept, |pair| dropped.push(pair));
+            assert_eq!((kept, dropped), (keep, drop), "{len} pairs");
+        }
+    }
+
+    #[test]
+    fn drop_touched_drops_everything_when_all_changed() {
+        let mut changes = Changes::default();
+        changes.grow(100);
+        changes.mark_all();
+        let (mut kept, mut dropped) = (pairs(30), Vec::new());
+        changes.drop_touched(&mut kept, |pair| dropped.push(pair));
+        assert_eq!((kept, dropped), (Vec::new(), pairs(30)));
     }
 }

@@ -81,7 +81,7 @@ impl PairCache {
         let changes = &tree.changes;
         let update = if changes.few(tree.len()) {
             tree.changed_pairs(&mut self.fresh);
-            self.pairs.retain(|&(a, b)| !changes.is_marked(a) && !changes.is_marked(b));
+            changes.drop_touched(&mut self.pairs, |_| {});
             let kept = self.pairs.len();
             self.pairs.extend_from_slice(&self.fresh);
             CacheUpdate { search: None, kept, queried: changes.ids().len() }

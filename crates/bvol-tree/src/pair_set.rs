@@ -79,13 +79,7 @@ impl PairSet {
             // The old pairs touching a changed leaf are the candidates to end
             // (moved aside, in order); the others are kept as they are.
             self.sorted.clear();
-            self.pairs.retain(|&(a, b)| {
-                let touched = changes.is_marked(a) || changes.is_marked(b);
-                if touched {
-                    self.sorted.push((a, b));
-                }
-                !touched
-            });
+            changes.drop_touched(&mut self.pairs, |pair| self.sorted.push(pair));
             diff(&self.sorted, &self.fresh, &mut self.ended, &mut self.began);
             self.sorted.clear();
             merge(&self.pairs, &self.fresh, &mut self.sorted);

@@ -54,6 +54,12 @@ pub(crate) const REMOVE_AHEAD: usize = 4;
 /// nothing.
 pub(crate) const NODES_AHEAD: usize = 64;
 
+/// How many pairs ahead a pass over a kept pair list asks for them. The
+/// pass looks up each pair's two ids in the change log's bits, and past the
+/// caches (a million leaves' pairs) the processor's own read-ahead does not
+/// keep up with it.
+pub(crate) const PAIRS_AHEAD: usize = 256;
+
 /// Bounds checked by one task of an update's input check: a task a bound
 /// would cost more than the check, and a chunk this long is checked in a
 /// fraction of a frame.
