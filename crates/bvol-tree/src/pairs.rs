@@ -146,7 +146,6 @@ impl<B: Bound> Tree<B> {
                 *pair = ordered(*pair);
             }
         } else {
-            out.clear();
             let (parts, visits): (Vec<Vec<(u32, u32)>>, Vec<u64>) = chunks
                 .par_iter()
                 .map(|&start| {
@@ -157,7 +156,7 @@ impl<B: Bound> Tree<B> {
                 })
                 .unzip();
             node_pairs = visits.iter().sum();
-            concat(parts, out, ordered);
+            concat(parts, out, 0, ordered);
         }
         SearchStats { node_pairs, pairs: out.len() as u64 }
     }
@@ -203,7 +202,7 @@ impl<B: Bound> Tree<B> {
             })
             .collect();
         out.extend_from_slice(&head);
-        concat(parts, &mut out, |pair| pair);
+        concat(parts, &mut out, head.len(), |pair| pair);
         out
     }
 }
@@ -247,16 +246,18 @@ fn ordered(pair: (u32, u32)) -> (u32, u32) {
     (pair.0.min(pair.1), pair.0.max(pair.1))
 }
 
-/// Appends the parts to `out` in order, each pair passed through `f`: a
-/// rayon task a part, each writing its own stretch of `out`: with millions
-/// of pairs, one thread copying them after the search would add a
-/// noticeable share of its time.
+/// Writes the parts in order to `out` from `start` on, each pair passed
+/// through `f`, and cuts `out` there: a rayon task a part, each writing its
+/// own stretch of `out`: with millions of pairs, one thread copying them
+/// after the search would add a noticeable share of its time. What `out`
+/// held past `start` is overwritten rather than cleared first, so that the
+/// last search's pairs save filling that room with zeros.
 fn concat(
     parts: Vec<Vec<(u32, u32)>>,
     out: &mut Vec<(u32, u32)>,
+    start: usize,
     f: impl Fn((u32, u32)) -> (u32, u32) + Sync,
 ) {
-    let start = out.len();
     out.resize(start + parts.iter().map(Vec::len).sum::<usize>(), (0, 0));
     let mut rest = &mut out[start..];
     let mut stretches = Vec::with_capacity(parts.len());
