@@ -80,8 +80,11 @@ impl PairCache {
     pub fn update<B: Bound>(&mut self, tree: &mut Tree<B>) -> CacheUpdate {
         let changes = &tree.changes;
         let update = if changes.few(tree.len()) {
-            tree.changed_pairs(&mut self.fresh);
-            changes.drop_touched(&mut self.pairs, |_| {});
+            // Independent: the queries read the tree, the drop the old pairs.
+            rayon::join(
+                || tree.changed_pairs(&mut self.fresh),
+                || changes.drop_touched(&mut self.pairs, |_| {}),
+            );
             let kept = self.pairs.len();
             self.pairs.extend_from_slice(&self.fresh);
             CacheUpdate { search: None, kept, queried: changes.ids().len() }
