@@ -7,7 +7,7 @@
 use bvol_volumes::prefetch;
 
 use crate::node::{NONE, Node, ROOT, Ref};
-use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD};
+use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, WALK_LATE};
 use crate::{Bound, Tree};
 
 impl<B: Bound> Tree<B> {
@@ -49,8 +49,10 @@ impl<B: Bound> Tree<B> {
         let mut found = Refit { moved, jumped, hold: self.policy.hold_jumps(), inner: 0.0 };
         if self.preorder {
             refit_subtree(&mut self.nodes, 0, bounds, &mut found);
+        } else if self.late * WALK_LATE > self.nodes.len() {
+            self.late = self.refit_walked(bounds, &mut found);
         } else {
-            self.refit_scattered(bounds, &mut found);
+            self.late = self.refit_blocks(bounds, &mut found);
         }
         let inner = found.inner;
         self.root_bound = self.nodes[self.root.index() as usize].merged();
@@ -118,11 +120,68 @@ impl<B: Bound> Tree<B> {
     }
 
     /// The refit of a tree whose nodes are not in preorder (after inserts,
-    /// removes or partial rebuilds): in reverse of a preorder walk, one task.
-    /// The layout is left as it is: while the shape keeps changing (leaves
-    /// jumping every frame), moving every node back each frame would cost
-    /// more than it saves.
-    fn refit_scattered(&mut self, bounds: Option<&[B]>, found: &mut Refit) {
+    /// removes or partial rebuilds), most of them still after their
+    /// parents: over the node array from last to first, as a tree in
+    /// preorder is, in parallel blocks of it. After a build every child
+    /// comes after its parent, and a removal keeps that; a node placed since
+    /// (an insertion takes any free slot) may come before a child of its. A
+    /// node whose internal child was not refit before it in its block (placed
+    /// before it, or in another block) keeps that child's old bound in the
+    /// pass, and is refit again after it with its ancestors. Returns how
+    /// many nodes were late so.
+    fn refit_blocks(&mut self, bounds: Option<&[B]>, found: &mut Refit) -> usize {
+        let mut late = Vec::new();
+        refit_block(&mut self.nodes, 0, &self.parents, bounds, found, &mut late);
+        if !late.is_empty() {
+            found.inner += self.refit_again(&late);
+        }
+        late.len()
+    }
+
+    /// Refits the nodes `late` and their ancestors again, children first:
+    /// marked up from each late node (to where an earlier climb went),
+    /// listed parents first from the root, and refit in reverse. Returns
+    /// the change in the internal children's summed area.
+    fn refit_again(&mut self, late: &[u32]) -> f64 {
+        let (nodes, parents) = (&mut self.nodes, &self.parents);
+        let mut marked = vec![false; nodes.len()];
+        for &first in late {
+            let mut x = first;
+            while x != ROOT && !marked[x as usize] {
+                marked[x as usize] = true;
+                x = parents[x as usize];
+            }
+        }
+        let mut order = Vec::new();
+        let mut stack = vec![self.root.index()];
+        while let Some(x) = stack.pop() {
+            order.push(x);
+            for c in nodes[x as usize].child {
+                if c.is_node() && marked[c.index() as usize] {
+                    stack.push(c.index());
+                }
+            }
+        }
+        let mut inner = 0.0;
+        for &x in order.iter().rev() {
+            for side in 0..2 {
+                let c = nodes[x as usize].child[side];
+                if c.is_node() {
+                    let merged = nodes[c.index() as usize].merged();
+                    let old = std::mem::replace(&mut nodes[x as usize].bounds[side], merged);
+                    inner += merged.cost() - old.cost();
+                }
+            }
+        }
+        inner
+    }
+
+    /// The refit of a tree whose nodes are far from preorder (many leaves
+    /// reinserted since its last layout, as a trickle of teleports leaves
+    /// it): in reverse of a preorder walk, one task, where
+    /// [`Tree::refit_blocks`] would refit many nodes again. Returns how many
+    /// nodes come before one of their children.
+    fn refit_walked(&mut self, bounds: Option<&[B]>, found: &mut Refit) -> usize {
         let nodes = &mut self.nodes;
         let mut order = vec![0; nodes.len() - self.free_count];
         // Every node in the order once: a walk whose pushes are written
@@ -143,7 +202,7 @@ impl<B: Bound> Tree<B> {
                 top += usize::from(c.is_node());
             }
         }
-        let mut inner = 0.0;
+        let (mut inner, mut late) = (0.0, 0);
         for k in (0..len).rev() {
             // As in `refit_run`, asked for ahead: the nodes are where the
             // order puts them, mostly in a row.
@@ -158,6 +217,8 @@ impl<B: Bound> Tree<B> {
             let x = order[k];
             let child = |c: Ref| c.is_node().then(|| nodes[c.index() as usize].merged());
             let [c0, c1] = nodes[x as usize].child;
+            let before = |c: Ref| c.is_node() & (c.index() < x);
+            late += usize::from(before(c0) | before(c1));
             let children = [child(c0), child(c1)];
             // In place: a copy on the stack, written back, would make
             // the refit's speed depend on where the stack falls against
@@ -166,6 +227,7 @@ impl<B: Bound> Tree<B> {
             inner += refit_node(&mut nodes[x as usize], children, bounds, found);
         }
         found.inner += inner;
+        late
     }
 
     /// Gives the leaves `listed` their new bounds for a refit to follow:
@@ -257,16 +319,7 @@ fn refit_run<B: Bound>(
 ) {
     let mut inner = 0.0;
     for x in (0..nodes.len()).rev() {
-        // The nodes are read and written backwards; asked for ahead, as
-        // the user's bounds are, the stream does not wait on memory.
-        if let Some(far) = x.checked_sub(NODES_AHEAD) {
-            prefetch(&nodes[far]);
-        }
-        if let Some(all) = bounds
-            && let Some(ahead) = x.checked_sub(PREFETCH_AHEAD)
-        {
-            ask_leaf_bounds(&nodes[ahead], all);
-        }
+        ask_ahead(nodes, x, bounds);
         let (head, tail) = nodes.split_at_mut(x + 1);
         let node = &mut head[x];
         let child = |side: usize| {
@@ -278,6 +331,81 @@ fn refit_run<B: Bound>(
         inner += refit_node(node, children, bounds, found);
     }
     found.inner += inner;
+}
+
+/// Refits the nodes `block` (from `lo` in the node array; `parents` for
+/// all of it), last to first, listing in `late` the nodes that kept an
+/// internal child's old bound because the child was not refit before them
+/// here. Long blocks split in two halves, refit on two rayon tasks; what
+/// they find is appended in a fixed order (second half's first), so the
+/// result is the same whatever the number of threads.
+fn refit_block<B: Bound>(
+    block: &mut [Node<B>],
+    lo: usize,
+    parents: &[u32],
+    bounds: Option<&[B]>,
+    found: &mut Refit,
+    late: &mut Vec<u32>,
+) {
+    if block.len() >= 2 * PARALLEL_REFIT {
+        let mid = block.len() / 2;
+        let (first, second) = block.split_at_mut(mid);
+        let part = |block: &mut [Node<B>], lo: usize| {
+            let (mut moved, mut jumped, mut late) = (Vec::new(), Vec::new(), Vec::new());
+            let hold = found.hold;
+            let mut part = Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
+            refit_block(block, lo, parents, bounds, &mut part, &mut late);
+            let inner = part.inner;
+            (moved, jumped, late, inner)
+        };
+        let (a, b) = rayon::join(|| part(first, lo), || part(second, lo + mid));
+        for (moved, jumped, parts_late, inner) in [b, a] {
+            found.moved.extend_from_slice(&moved);
+            found.jumped.extend_from_slice(&jumped);
+            late.extend_from_slice(&parts_late);
+            found.inner += inner;
+        }
+        return;
+    }
+    let mut inner = 0.0;
+    for k in (0..block.len()).rev() {
+        ask_ahead(block, k, bounds);
+        let x = lo + k;
+        if parents[x] == NONE {
+            continue; // free
+        }
+        let (head, tail) = block.split_at_mut(k + 1);
+        let node = &mut head[k];
+        // An internal child refit before it in this block lies after it.
+        let refit = |c: Ref| tail.get((c.index() as usize).wrapping_sub(x + 1));
+        let ready = |c: Ref| !c.is_node() || refit(c).is_some();
+        if !(ready(node.child[0]) && ready(node.child[1])) {
+            late.push(x as u32);
+        }
+        let child = |side: usize| {
+            let c = node.child[side];
+            c.is_node().then(|| refit(c).map_or(node.bounds[side], Node::merged))
+        };
+        let children = [child(0), child(1)];
+        inner += refit_node(node, children, bounds, found);
+    }
+    found.inner += inner;
+}
+
+/// Before refitting `nodes[k]` in a pass from last to first, asks for a
+/// node further on and the leaf bounds of a nearer one: the nodes are read
+/// and written backwards, and asked for ahead, as the user's bounds are, the
+/// stream does not wait on memory.
+#[inline]
+fn ask_ahead<B: Bound>(nodes: &[Node<B>], k: usize, bounds: Option<&[B]>) {
+    if let Some(far) = k.checked_sub(NODES_AHEAD) {
+        prefetch(&nodes[far]);
+    }
+    if let Some(all) = bounds
+        && let Some(ahead) = k.checked_sub(PREFETCH_AHEAD)
+    {
+        ask_leaf_bounds(&nodes[ahead], all);
+    }
 }
 
 /// Asks for the bounds in `all` of the leaves among `node`'s children, to be
@@ -335,4 +463,55 @@ fn refit_node<B: Bound>(
         }
     }
     inner
+}
+
+#[cfg(test)]
+mod tests {
+    use bvol_volumes::Aabb;
+    use glam::Vec3;
+
+    use super::*;
+
+    fn cube(x: f32, y: f32) -> Aabb {
+        Aabb::new(Vec3::new(x, y, 0.0), Vec3::new(x + 1.0, y + 1.0, 1.0))
+    }
+
+    /// Whether some node in use comes after one of its internal children.
+    fn out_of_order(tree: &Tree<Aabb>) -> bool {
+        (0..tree.nodes.len()).any(|x| {
+            tree.parents[x] != NONE
+                && tree.nodes[x].child.iter().any(|c| c.is_node() && (c.index() as usize) < x)
+        })
+    }
+
+    #[test]
+    fn a_tree_out_of_preorder_is_refit_exactly() {
+        // Enough nodes for the refit to split them into blocks.
+        let n = 4 * PARALLEL_REFIT;
+        let mut boxes: Vec<Aabb> =
+            (0..n).map(|i| cube((i % 200) as f32 * 1.5, (i / 200) as f32 * 1.5)).collect();
+        let mut tree = Tree::from_bounds(&boxes).unwrap();
+        // Leaves set clear of where they were are reinserted into free
+        // slots, before or after their new neighbours.
+        for (k, id) in [7, 300, 5120, 9999, 41, 26500, 128, 18000].into_iter().enumerate() {
+            boxes[id] = cube(-3.0 * k as f32, -4.0);
+            tree.set_bound(id as u32, boxes[id]).unwrap();
+        }
+        assert!(out_of_order(&tree));
+        // Every leaf moves a little: one refit of the whole tree.
+        for b in &mut boxes {
+            *b = Aabb::new(b.min + 0.1, b.max + 0.1);
+        }
+        assert!(tree.update(&boxes).unwrap().refit);
+        assert!(out_of_order(&tree));
+        for (x, node) in tree.nodes.iter().enumerate().filter(|&(x, _)| tree.parents[x] != NONE) {
+            for (side, c) in node.child.into_iter().enumerate() {
+                let want = match c.is_node() {
+                    true => tree.nodes[c.index() as usize].merged(),
+                    false => boxes[c.index() as usize],
+                };
+                assert_eq!(node.bounds[side], want, "node {x}, side {side}");
+            }
+        }
+    }
 }

@@ -80,6 +80,10 @@ pub struct Tree<B: Bound> {
     pub(crate) preorder: bool,
     /// Whether the shape changed since the last refit.
     pub(crate) reshaped: bool,
+    /// How many nodes the last refit out of preorder found late: placed
+    /// before a child of theirs (or, refitting in blocks, at a block's
+    /// edge). How far the layout has strayed from preorder.
+    pub(crate) late: usize,
     /// Scratch of the refit path: the ids it found moved.
     pub(crate) moved: Vec<u32>,
     /// Scratch of the refit path: the ids it found jumped clear of their
@@ -119,6 +123,7 @@ impl<B: Bound> Tree<B> {
             policy: Policy::default(),
             preorder: true,
             reshaped: false,
+            late: 0,
             moved: Vec::new(),
             jumped: Vec::new(),
         }

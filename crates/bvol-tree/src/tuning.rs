@@ -60,6 +60,12 @@ pub(crate) const NODES_AHEAD: usize = 64;
 /// keep up with it.
 pub(crate) const PAIRS_AHEAD: usize = 256;
 
+/// A tree out of preorder whose last refit found more than one node in
+/// this many before a child of its is refit along a preorder walk: refit
+/// in memory order, so many nodes would be refit again, with their
+/// ancestors, that the walk costs less.
+pub(crate) const WALK_LATE: usize = 64;
+
 /// Bounds checked by one task of an update's input check: a task a bound
 /// would cost more than the check, and a chunk this long is checked in a
 /// fraction of a frame.
