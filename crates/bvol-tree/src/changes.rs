@@ -55,7 +55,14 @@ impl Changes {
     /// Whether `id` changed.
     #[inline]
     pub(crate) fn is_marked(&self, id: u32) -> bool {
-        self.all || self.bits.get(id as usize / 64).is_some_and(|w| w & (1 << (id % 64)) != 0)
+        self.bit(id) != 0
+    }
+
+    /// 1 when `id` changed, else 0: without a branch, for folding.
+    #[inline]
+    fn bit(&self, id: u32) -> u64 {
+        let word = self.bits.get(id as usize / 64).map_or(0, |w| w >> (id % 64));
+        (word & 1) | u64::from(self.all)
     }
 
     /// Drops from `pairs` those that touch a changed id, keeping the others
@@ -70,10 +77,7 @@ impl Changes {
         pairs: &mut Vec<(u32, u32)>,
         mut dropped: impl FnMut((u32, u32)),
     ) {
-        let bit = |id: u32| {
-            let word = self.bits.get(id as usize / 64).map_or(0, |w| w >> (id % 64));
-            (word & 1) | u64::from(self.all)
-        };
+        let bit = |id: u32| self.bit(id);
         let mut kept = 0;
         for start in (0..pairs.len()).step_by(LINE) {
             let end = (start + LINE).min(pairs.len());

@@ -266,11 +266,40 @@ struct Refit<'a> {
     inner: f64,
 }
 
+impl Refit<'_> {
+    /// Runs `first` and `second` on two rayon tasks, each finding into a
+    /// refit of its own, and appends what they found here in a fixed order
+    /// (second's first, as a pass from last to first meets them), so the
+    /// result is the same whatever the number of threads. Returns what each
+    /// returned.
+    fn join<R: Send>(
+        &mut self,
+        first: impl FnOnce(&mut Refit) -> R + Send,
+        second: impl FnOnce(&mut Refit) -> R + Send,
+    ) -> (R, R) {
+        let hold = self.hold;
+        let (a, b) = rayon::join(|| Refit::apart(hold, first), || Refit::apart(hold, second));
+        for (moved, jumped, inner, _) in [&b, &a] {
+            self.moved.extend_from_slice(moved);
+            self.jumped.extend_from_slice(jumped);
+            self.inner += inner;
+        }
+        (a.3, b.3)
+    }
+
+    /// Runs `run` on a refit of its own: what it found, and what it returned.
+    fn apart<R>(hold: bool, run: impl FnOnce(&mut Refit) -> R) -> (Vec<u32>, Vec<u32>, f64, R) {
+        let (mut moved, mut jumped) = (Vec::new(), Vec::new());
+        let mut part = Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
+        let result = run(&mut part);
+        let inner = part.inner;
+        (moved, jumped, inner, result)
+    }
+}
+
 /// Refits the subtree laid out in preorder in `nodes` (its root first, named
 /// `base`), children before parents. Large subtrees split into their two
-/// child subtrees, refit on two rayon tasks; what they find is appended in a
-/// fixed order (second child's first), so the result is the same whatever
-/// the number of threads.
+/// child subtrees, refit on two rayon tasks ([`Refit::join`]).
 fn refit_subtree<B: Bound>(
     nodes: &mut [Node<B>],
     base: usize,
@@ -288,23 +317,13 @@ fn refit_subtree<B: Bound>(
         _ => rest.len(),
     };
     let (first_nodes, second_nodes) = rest.split_at_mut(second);
-    let part = |nodes: &mut [Node<B>], child: Ref| {
-        let (mut moved, mut jumped) = (Vec::new(), Vec::new());
-        let hold = found.hold;
-        let mut part = Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
+    let part = |nodes: &mut [Node<B>], child: Ref, part: &mut Refit| {
         if child.is_node() {
-            refit_subtree(nodes, child.index() as usize, bounds, &mut part);
+            refit_subtree(nodes, child.index() as usize, bounds, part);
         }
-        let inner = part.inner;
-        (moved, jumped, inner)
     };
-    let (a, b) =
-        rayon::join(|| part(first_nodes, node.child[0]), || part(second_nodes, node.child[1]));
-    for (moved, jumped, inner) in [b, a] {
-        found.moved.extend_from_slice(&moved);
-        found.jumped.extend_from_slice(&jumped);
-        found.inner += inner;
-    }
+    let [c0, c1] = node.child;
+    found.join(|p| part(first_nodes, c0, p), |p| part(second_nodes, c1, p));
     // A child subtree's root is its run's first node.
     let children = [first_nodes.first().map(Node::merged), second_nodes.first().map(Node::merged)];
     found.inner += refit_node(node, children, bounds, found);
@@ -336,9 +355,8 @@ fn refit_run<B: Bound>(
 /// Refits the nodes `block` (from `lo` in the node array; `parents` for
 /// all of it), last to first, listing in `late` the nodes that kept an
 /// internal child's old bound because the child was not refit before them
-/// here. Long blocks split in two halves, refit on two rayon tasks; what
-/// they find is appended in a fixed order (second half's first), so the
-/// result is the same whatever the number of threads.
+/// here. Long blocks split in two halves, refit on two rayon tasks
+/// ([`Refit::join`]; the late nodes too, second half's first).
 fn refit_block<B: Bound>(
     block: &mut [Node<B>],
     lo: usize,
@@ -350,21 +368,14 @@ fn refit_block<B: Bound>(
     if block.len() >= 2 * PARALLEL_REFIT {
         let mid = block.len() / 2;
         let (first, second) = block.split_at_mut(mid);
-        let part = |block: &mut [Node<B>], lo: usize| {
-            let (mut moved, mut jumped, mut late) = (Vec::new(), Vec::new(), Vec::new());
-            let hold = found.hold;
-            let mut part = Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
-            refit_block(block, lo, parents, bounds, &mut part, &mut late);
-            let inner = part.inner;
-            (moved, jumped, late, inner)
+        let part = |block: &mut [Node<B>], lo: usize, part: &mut Refit| {
+            let mut late = Vec::new();
+            refit_block(block, lo, parents, bounds, part, &mut late);
+            late
         };
-        let (a, b) = rayon::join(|| part(first, lo), || part(second, lo + mid));
-        for (moved, jumped, parts_late, inner) in [b, a] {
-            found.moved.extend_from_slice(&moved);
-            found.jumped.extend_from_slice(&jumped);
-            late.extend_from_slice(&parts_late);
-            found.inner += inner;
-        }
+        let (a, b) = found.join(|p| part(first, lo, p), |p| part(second, lo + mid, p));
+        late.extend(b);
+        late.extend(a);
         return;
     }
     let mut inner = 0.0;
