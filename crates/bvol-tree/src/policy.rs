@@ -31,7 +31,9 @@
 //! - **Outrun.** When mass motion stretches the tree so far that its cost
 //!   is [`DRIFT_AT_ONCE`] drifts above the last build's, it is rebuilt in
 //!   one go at once: bodies moving several times their size a frame would
-//!   outrun any staged build.
+//!   outrun any staged build. Nor does a staged build begin in mass motion
+//!   when the cost, growing as it grew since the last refit, would get
+//!   there before the build lands: its steps would be thrown away.
 //! - **Mass motion during a build.** Its jumps are not noted: the topology
 //!   is installed as it is, its cost is no baseline, and the next build
 //!   starts at once; so does one more if leaves still jump during that one
@@ -53,6 +55,9 @@ pub(crate) struct Policy<B: Bound> {
     /// SAH cost right after the last whole build: what the drift is
     /// measured from.
     built_cost: f64,
+    /// SAH cost after the last refit (or whole build): how fast the cost
+    /// drifts is told from it.
+    last_cost: f64,
     /// Fraction of leaves the last update found moved.
     moved_fraction: f32,
     /// Whether the last refit found many leaves jumped.
@@ -159,6 +164,7 @@ impl<B: Bound> Policy<B> {
     pub(crate) fn rebuilt(&mut self, cost: f64) {
         self.staged = None;
         self.built_cost = cost;
+        self.last_cost = cost;
     }
 
     /// Takes the staged build if it is finished: its topology to install,
@@ -205,10 +211,16 @@ impl<B: Bound> Policy<B> {
         cost: f64,
         len: usize,
     ) -> Next {
+        let at_once = self.built_cost * (1.0 + config.drift * DRIFT_AT_ONCE);
         let drifted = |share: f64| cost > self.built_cost * (1.0 + config.drift * share);
-        if mass && drifted(DRIFT_AT_ONCE) {
+        let growth = cost - std::mem::replace(&mut self.last_cost, cost);
+        if mass && cost > at_once {
             return Next::Rebuild;
         }
+        // Mass motion drifting so fast that a build begun now would be
+        // dropped for a rebuild in one go before it lands: its steps would
+        // be wasted.
+        let outrun = mass && cost + growth * STAGED_FRAMES as f64 > at_once;
         match installed {
             Some(Install::Rebuild) => Next::Wait,
             Some(Install::Topology { stale: None, .. }) => Next::Step { after_mass: true },
@@ -232,7 +244,7 @@ impl<B: Bound> Policy<B> {
                 self.staged = Some(Box::new(Rebuild::new(TRICKLE_PACE, false)));
                 Next::Step { after_mass: false }
             }
-            None if drifted(DRIFT_STAGED) => Next::Step { after_mass: false },
+            None if drifted(DRIFT_STAGED) && !outrun => Next::Step { after_mass: false },
             None => Next::Wait,
         }
     }
@@ -276,5 +288,42 @@ impl<B: Bound> Rebuild<B> {
     /// A build, not begun, taking `pace` steps a frame.
     fn new(pace: usize, after_mass: bool) -> Self {
         Rebuild { build: Staged::default(), pace, stale: Vec::new(), mass: false, after_mass }
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use bvol_volumes::Aabb;
+
+    use super::*;
+
+    /// The first move other than waiting that the policy makes over frames
+    /// whose refit finds the SAH cost `step` higher each frame than the
+    /// last, from a whole build of cost 1, in mass motion or not.
+    fn first_move(step: f64, mass: bool) -> Next {
+        let config = Config::default();
+        let mut policy = Policy::<Aabb>::default();
+        policy.rebuilt(1.0);
+        (1..1000)
+            .map(|frame| {
+                policy.after_refit(&config, None, 0, mass, 1.0 + step * frame as f64, 1000)
+            })
+            .find(|next| *next != Next::Wait)
+            .unwrap()
+    }
+
+    #[test]
+    fn mass_motion_begins_no_staged_build_a_rebuild_would_overtake() {
+        // A staged build begins once the cost drifted DRIFT_STAGED drifts
+        // and lands STAGED_FRAMES frames later; a rebuild in one go comes
+        // past DRIFT_AT_ONCE drifts. Growing by `edge` a frame, the cost
+        // gets from the one to the other in those frames.
+        let drift = Config::default().drift;
+        let edge = drift * (DRIFT_AT_ONCE - DRIFT_STAGED) / STAGED_FRAMES as f64;
+        let (slow, fast) = (edge / 2.0, edge * 2.0);
+        assert_eq!(first_move(slow, true), Next::Step { after_mass: false });
+        assert_eq!(first_move(fast, true), Next::Rebuild);
+        // Without mass motion no rebuild comes in one go: a build begins.
+        assert_eq!(first_move(fast, false), Next::Step { after_mass: false });
     }
 }
