@@ -1,12 +1,14 @@
 //! Whole-tree construction: batch builds for level loads, full rebuilds,
 //! and the install of a rebuild staged over frames.
 
+use rayon::prelude::*;
+
 use crate::build::Atom;
 use crate::check::{check_bound, check_id};
 use crate::error::TreeError;
 use crate::morton::build_morton;
 use crate::node::{NONE, Node, ROOT, Ref};
-use crate::tuning::PREFETCH_AHEAD;
+use crate::tuning::{PASS_RUN, PREFETCH_AHEAD};
 use crate::{Bound, Config, Tree};
 
 impl<B: Bound> Tree<B> {
@@ -206,12 +208,14 @@ impl<B: Bound> Tree<B> {
         self.reshaped = false;
     }
 
-    /// Resizes the node arrays to `n` fresh nodes, releasing spare capacity.
+    /// Resizes the node arrays to `n` nodes, releasing spare capacity, for
+    /// a build that writes every node and parent link: the old ones are
+    /// left to be overwritten rather than cleared first.
     fn clear_nodes(&mut self, n: usize) {
-        self.nodes.clear();
+        self.nodes.truncate(n);
         self.nodes.resize(n, Node::empty());
         self.nodes.shrink_to(n);
-        self.parents.clear();
+        self.parents.truncate(n);
         self.parents.resize(n, NONE);
         self.parents.shrink_to(n);
         self.enlarged.clear();
@@ -242,13 +246,17 @@ impl<B: Bound> Tree<B> {
         if root_area <= 0.0 {
             return 0.0;
         }
-        let inner: f64 = self
-            .nodes
-            .iter()
-            .zip(&self.parents)
-            .filter(|(_, p)| **p != NONE)
-            .flat_map(|(n, _)| (0..2).filter(|&s| n.child[s].is_node()).map(|s| n.bounds[s].cost()))
-            .sum();
+        // Summed by runs of nodes in parallel, and the runs' sums in order:
+        // the same sum on any number of threads.
+        let runs = self.nodes.par_chunks(PASS_RUN).zip(self.parents.par_chunks(PASS_RUN));
+        let sums: Vec<f64> = runs
+            .map(|(nodes, parents)| {
+                let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
+                let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds));
+                children.filter(|(c, _)| c.is_node()).map(|(_, b)| b.cost()).sum::<f64>()
+            })
+            .collect();
+        let inner: f64 = sums.iter().sum();
         (root_area + inner) / root_area
     }
 }
