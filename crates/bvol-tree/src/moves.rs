@@ -87,8 +87,17 @@ impl<B: Bound> Tree<B> {
                 out.push((id, self.remove_leaf(id)));
             }
         }
+        if out.is_empty() {
+            return;
+        }
+        // The new nodes take the free ones in an order that a refit over
+        // the node array meets children first ([`Tree::alloc_node_among`]).
+        let mut spare = self.take_free();
         for &(id, bound) in &out {
-            self.insert_leaf(id, bound, &bound);
+            self.insert_leaf_among(id, bound, &bound, Some(&mut spare));
+        }
+        for &x in spare.iter().rev() {
+            self.free_node(x);
         }
         stats.reinserted += out.len();
     }

@@ -7,7 +7,7 @@
 use bvol_volumes::prefetch;
 
 use crate::node::{NONE, Node, ROOT, Ref};
-use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, WALK_LATE};
+use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, SETTLED, WALK_LATE};
 use crate::{Bound, Tree};
 
 impl<B: Bound> Tree<B> {
@@ -17,9 +17,11 @@ impl<B: Bound> Tree<B> {
     /// reinsert), and refits every internal node to the exact merge of its
     /// children. Returns the SAH cost after the refit.
     ///
-    /// Runs over the nodes in reverse preorder, children before parents: in
-    /// place and in parallel subtrees when the nodes are laid out in preorder
-    /// (after a whole build), else along a preorder walk.
+    /// Runs over the nodes children before parents: in parallel subtrees
+    /// when the nodes are laid out in preorder (after a whole build or a
+    /// layout), in parallel blocks of the node array when few nodes come
+    /// before a child of theirs ([`Tree::refit_blocks`]), else along a
+    /// preorder walk.
     pub(crate) fn refit_pass(
         &mut self,
         bounds: Option<&[B]>,
@@ -39,20 +41,29 @@ impl<B: Bound> Tree<B> {
         if !self.root.is_node() {
             return 0.0;
         }
-        if !self.preorder && !self.reshaped {
-            // Not in preorder, but the shape has not changed since the last
-            // refit: it is settling, and laying it out once pays for itself
-            // in the refits (and pair searches) that follow.
+        self.held = if self.reshaped { 0 } else { self.held.saturating_add(1) };
+        self.reshaped = false;
+        // Late nodes piled up a few a frame (a trickle of reinsertions)
+        // would be walked every frame from now on: a layout clears them
+        // for the frames that follow. Many at once (a burst) are walked
+        // while the tree settles.
+        let nodes = self.nodes.len();
+        let crowded = |late: usize| late * WALK_LATE > nodes;
+        let piled_up = crowded(self.late) && !crowded(self.late_gain);
+        if !self.preorder && (piled_up || self.held >= SETTLED) {
             self.relayout();
         }
-        self.reshaped = false;
         let mut found = Refit { moved, jumped, hold: self.policy.hold_jumps(), inner: 0.0 };
         if self.preorder {
             refit_subtree(&mut self.nodes, 0, bounds, &mut found);
-        } else if self.late * WALK_LATE > self.nodes.len() {
-            self.late = self.refit_walked(bounds, &mut found);
+            (self.late, self.late_gain) = (0, 0);
         } else {
-            self.late = self.refit_blocks(bounds, &mut found);
+            let late = match crowded(self.late) {
+                true => self.refit_walked(bounds, &mut found),
+                false => self.refit_blocks(bounds, &mut found),
+            };
+            self.late_gain = late.saturating_sub(self.late);
+            self.late = late;
         }
         let inner = found.inner;
         self.root_bound = self.nodes[self.root.index() as usize].merged();
@@ -482,6 +493,7 @@ mod tests {
     use glam::Vec3;
 
     use super::*;
+    use crate::Config;
 
     fn cube(x: f32, y: f32) -> Aabb {
         Aabb::new(Vec3::new(x, y, 0.0), Vec3::new(x + 1.0, y + 1.0, 1.0))
@@ -515,6 +527,12 @@ mod tests {
         }
         assert!(tree.update(&boxes).unwrap().refit);
         assert!(out_of_order(&tree));
+        assert_exact(&tree, &boxes);
+    }
+
+    /// Every node's bounds are the exact merge of its children's, and the
+    /// leaves' are `boxes`.
+    fn assert_exact(tree: &Tree<Aabb>, boxes: &[Aabb]) {
         for (x, node) in tree.nodes.iter().enumerate().filter(|&(x, _)| tree.parents[x] != NONE) {
             for (side, c) in node.child.into_iter().enumerate() {
                 let want = match c.is_node() {
@@ -524,5 +542,41 @@ mod tests {
                 assert_eq!(node.bounds[side], want, "node {x}, side {side}");
             }
         }
+    }
+
+    #[test]
+    fn a_trickle_of_reinsertions_is_refit_exactly_in_blocks_and_laid_out() {
+        let n = 4 * PARALLEL_REFIT;
+        let mut boxes: Vec<Aabb> =
+            (0..n).map(|i| cube((i % 200) as f32 * 1.5, (i / 200) as f32 * 1.5)).collect();
+        // No rebuilds: the reinsertions alone reshape the tree.
+        let config = Config { drift: f64::INFINITY, ..Config::default() };
+        let mut tree = Tree::build(config, (0..).zip(boxes.iter().copied())).unwrap();
+        let (mut blocks, mut layouts, mut gained, mut seed) = (0, 0, 0, 1u64);
+        for frame in 0..40 {
+            // Every box drifts; one in a hundred lands anywhere in the grid.
+            for b in &mut boxes {
+                *b = Aabb::new(b.min + 0.01, b.max + 0.01);
+            }
+            for _ in 0..n / 100 {
+                seed = seed.wrapping_mul(6364136223846793005).wrapping_add(1442695040888963407);
+                let id = (seed >> 33) as usize % n;
+                let (x, y) = ((seed >> 20) % 300, (seed >> 10) % 250);
+                boxes[id] = cube(x as f32, y as f32);
+            }
+            let was_late = !tree.preorder && tree.late > 0;
+            assert!(tree.update(&boxes).unwrap().refit);
+            // Laid out, the tree was refit in preorder: none late.
+            blocks += usize::from(was_late && tree.late > 0);
+            gained += if was_late && tree.late > 0 { tree.late_gain } else { 0 };
+            layouts += usize::from(was_late && tree.late == 0);
+            assert_exact(&tree, &boxes);
+            assert!(tree.late * WALK_LATE <= 2 * n, "frame {frame}: {} nodes late", tree.late);
+        }
+        assert!(blocks >= 10 && layouts >= 2, "{blocks} refits in blocks, {layouts} layouts");
+        // Most reinsertions take a free node after their new parent (taking
+        // the free list's first, about 85% came before a child of theirs).
+        let reinserted = blocks * (n / 100);
+        assert!(gained * 2 < reinserted, "{gained} late after {reinserted} reinsertions");
     }
 }

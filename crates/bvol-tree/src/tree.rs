@@ -1,5 +1,7 @@
 //! The tree: storage, and the per-leaf operations insert, remove and move.
 
+use std::collections::BTreeSet;
+
 use crate::Bound;
 use crate::changes::Changes;
 use crate::check::{check_bound, check_id};
@@ -80,10 +82,16 @@ pub struct Tree<B: Bound> {
     pub(crate) preorder: bool,
     /// Whether the shape changed since the last refit.
     pub(crate) reshaped: bool,
+    /// Refits in a row through which the shape held.
+    pub(crate) held: u32,
     /// How many nodes the last refit out of preorder found late: placed
     /// before a child of theirs (or, refitting in blocks, at a block's
     /// edge). How far the layout has strayed from preorder.
     pub(crate) late: usize,
+    /// How many more nodes the last refit out of preorder found late than
+    /// the one before it: a few a frame piled up over frames, or many at
+    /// once.
+    pub(crate) late_gain: usize,
     /// Scratch of the refit path: the ids it found moved.
     pub(crate) moved: Vec<u32>,
     /// Scratch of the refit path: the ids it found jumped clear of their
@@ -124,6 +132,8 @@ impl<B: Bound> Tree<B> {
             preorder: true,
             reshaped: false,
             late: 0,
+            late_gain: 0,
+            held: 0,
             moved: Vec::new(),
             jumped: Vec::new(),
         }
@@ -271,6 +281,18 @@ impl<B: Bound> Tree<B> {
 
     /// Links leaf `id` (tight `bound`, fat `fat`) in next to the best sibling.
     pub(crate) fn insert_leaf(&mut self, id: u32, bound: B, fat: &B) {
+        self.insert_leaf_among(id, bound, fat, None);
+    }
+
+    /// [`Tree::insert_leaf`], the new internal node taken from `spare` (free
+    /// nodes) when given: see [`Tree::alloc_node_among`].
+    pub(crate) fn insert_leaf_among(
+        &mut self,
+        id: u32,
+        bound: B,
+        fat: &B,
+        spare: Option<&mut BTreeSet<u32>>,
+    ) {
         let leaf = Ref::leaf(id);
         if self.root == Ref::NONE {
             self.root = leaf;
@@ -280,7 +302,11 @@ impl<B: Bound> Tree<B> {
         }
         let slot = self.find_best_sibling(fat);
         let (sibling, sibling_bound) = (self.get_ref(slot), self.get(slot));
-        let p = self.alloc_node(Node { bounds: [sibling_bound, bound], child: [sibling, leaf] });
+        let node = Node { bounds: [sibling_bound, bound], child: [sibling, leaf] };
+        let p = match spare {
+            Some(spare) => self.alloc_node_among(node, slot, spare),
+            None => self.alloc_node(node),
+        };
         self.set_parent(sibling, p);
         self.leaf_parents[id as usize] = p;
         let joined = sibling_bound.merge(fat);
@@ -495,6 +521,39 @@ impl<B: Bound> Tree<B> {
         self.free_count -= 1;
         self.nodes[x as usize] = node;
         x
+    }
+
+    /// A node from `spare` (free nodes; a new one if none) for `node`, to be
+    /// linked in at `slot`: the first after its parent, or the last when
+    /// none is. A refit over the node array from last to first
+    /// ([`Tree::refit_pass`]) meets a node so placed after its children
+    /// whenever a free node allows (the first after the parent comes before
+    /// an internal child too if any does), where the free list's first
+    /// would come before a child of its for most insertions.
+    fn alloc_node_among(&mut self, node: Node<B>, slot: Slot, spare: &mut BTreeSet<u32>) -> u32 {
+        let parent = match slot {
+            Slot::Child { node, .. } => node,
+            Slot::Root => 0,
+        };
+        let first_after = spare.range(parent..).next().copied();
+        let Some(x) = first_after.or_else(|| spare.last().copied()) else {
+            return self.alloc_node(node);
+        };
+        spare.remove(&x);
+        self.mark_reshaped();
+        self.nodes[x as usize] = node;
+        x
+    }
+
+    /// Takes every free node off the free list.
+    pub(crate) fn take_free(&mut self) -> BTreeSet<u32> {
+        let mut spare = BTreeSet::new();
+        while self.free != Ref::NONE {
+            spare.insert(self.free.index());
+            self.free = self.nodes[self.free.index() as usize].child[0];
+        }
+        self.free_count = 0;
+        spare
     }
 
     /// Returns node `x` to the free list.

@@ -61,10 +61,19 @@ pub(crate) const NODES_AHEAD: usize = 64;
 pub(crate) const PAIRS_AHEAD: usize = 256;
 
 /// A tree out of preorder whose last refit found more than one node in
-/// this many before a child of its is refit along a preorder walk: refit
+/// this many before a child of its is laid out in preorder again, when
+/// they piled up over frames, or else refit along a preorder walk: refit
 /// in memory order, so many nodes would be refit again, with their
 /// ancestors, that the walk costs less.
 pub(crate) const WALK_LATE: usize = 64;
+
+/// A tree out of preorder whose shape held through this many refits in a
+/// row is laid out in preorder again. A layout costs about a refit, and
+/// saves each refit after it a few percent: a shape that held this long
+/// is taken to hold long enough to pay for it. A pile whose landings
+/// reshape it every few frames never would (laid out at every frame its
+/// shape held, its update took 2.25 ms a frame on average against 1.90).
+pub(crate) const SETTLED: u32 = 8;
 
 /// Bounds checked by one task of an update's input check: a task a bound
 /// would cost more than the check, and a chunk this long is checked in a
