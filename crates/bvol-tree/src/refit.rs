@@ -45,8 +45,9 @@ impl<B: Bound> Tree<B> {
         self.reshaped = false;
         // Late nodes piled up a few a frame (a trickle of reinsertions)
         // would be walked every frame from now on: a layout clears them
-        // for the frames that follow. Many at once (a burst) are walked
-        // while the tree settles.
+        // for the frames that follow. Many at once (a burst, which a
+        // settling tree may never see again) are walked this frame; if
+        // they are still there at the next, it lays the tree out.
         let nodes = self.nodes.len();
         let crowded = |late: usize| late * WALK_LATE > nodes;
         let piled_up = crowded(self.late) && !crowded(self.late_gain);
