@@ -47,11 +47,14 @@ impl<B: Bound> Tree<B> {
     /// installs it). When more than one leaf in 16 jumps clear of its bound
     /// in one frame (bodies falling faster than their size), the jumps are
     /// refit where they land, like any move, and left to the staged
-    /// rebuilds. A steady trickle of jumps (teleports) so frequent that a
-    /// rebuild staged a phase a frame would find one leaf in 16 placed where
-    /// it was has it staged three phases a frame, installed at the start of
-    /// the third refit; only a trickle so heavy that even this one would
-    /// (about one leaf in 50 a frame) rebuilds the tree in one go.
+    /// rebuilds; bodies so fast that the SAH cost outruns those (four times
+    /// the drift above the last build's) have the tree rebuilt in one go,
+    /// and no staged rebuild begins that such a rebuild would overtake. A
+    /// steady trickle of jumps (teleports) so frequent that a rebuild
+    /// staged a phase a frame would find one leaf in 16 placed where it was
+    /// has it staged three phases a frame, installed at the start of the
+    /// third refit; only a trickle so heavy that even this one would (about
+    /// one leaf in 50 a frame) rebuilds the tree in one go.
     ///
     /// Every bound is checked first: on error nothing has changed.
     pub fn update(&mut self, bounds: &[B]) -> Result<UpdateStats, TreeError> {
