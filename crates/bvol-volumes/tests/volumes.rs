@@ -210,16 +210,19 @@ proptest! {
         prop_assert!((v6 - Aabb::fit(&p).unwrap().volume()).abs() <= 1e-5 * v6);
         prop_assert!(v26 <= v14 * (1.0 + 1e-5) && v14 <= v6 * (1.0 + 1e-5) && v18 <= v6 * (1.0 + 1e-5));
         let b = k26.aabb();
-        let n = 4000;
+        let n = 16_000;
         let inside = (0..n).filter(|_| {
             let t = Vec3::new(rng.random(), rng.random(), rng.random());
             k26.contains_point(b.min + (b.max - b.min) * t)
         }).count();
         let estimate = b.volume() * inside as f32 / n as f32;
-        // 5 standard deviations of the binomial estimate.
+        // 6 standard deviations of the binomial estimate: a correct volume
+        // fails about once in 500 million cases (at 5 with 4 000 points, a
+        // seed in a CI run did: 0.663 against 0.613, where 4 million points
+        // give 0.6135), and a volume off by 2.5% of the box's fails.
         let f = inside as f32 / n as f32;
         let sigma = b.volume() * (f * (1.0 - f) / n as f32).sqrt();
-        prop_assert!((estimate - v26).abs() <= 5.0 * sigma + 1e-4, "{estimate} vs {v26}");
+        prop_assert!((estimate - v26).abs() <= 6.0 * sigma + 1e-4, "{estimate} vs {v26}");
     }
 }
 
