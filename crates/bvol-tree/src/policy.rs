@@ -211,16 +211,17 @@ impl<B: Bound> Policy<B> {
         cost: f64,
         len: usize,
     ) -> Next {
-        let at_once = self.built_cost * (1.0 + config.drift * DRIFT_AT_ONCE);
-        let drifted = |share: f64| cost > self.built_cost * (1.0 + config.drift * share);
+        // The cost `share` drifts above the last build's.
+        let drift_at = |share: f64| self.built_cost * (1.0 + config.drift * share);
+        let drifted = |share: f64| cost > drift_at(share);
         let growth = cost - std::mem::replace(&mut self.last_cost, cost);
-        if mass && cost > at_once {
+        if mass && drifted(DRIFT_AT_ONCE) {
             return Next::Rebuild;
         }
         // Mass motion drifting so fast that a build begun now would be
         // dropped for a rebuild in one go before it lands: its steps would
         // be wasted.
-        let outrun = mass && cost + growth * STAGED_FRAMES as f64 > at_once;
+        let outrun = mass && cost + growth * STAGED_FRAMES as f64 > drift_at(DRIFT_AT_ONCE);
         match installed {
             Some(Install::Rebuild) => Next::Wait,
             Some(Install::Topology { stale: None, .. }) => Next::Step { after_mass: true },

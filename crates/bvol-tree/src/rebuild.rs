@@ -131,17 +131,17 @@ impl<B: Bound> Tree<B> {
         self.free_count = 0;
         match atoms.as_slice() {
             [] => {
-                self.clear_nodes(0);
+                self.resize_nodes(0);
                 self.root = Ref::NONE;
             }
             &[one] => {
-                self.clear_nodes(0);
+                self.resize_nodes(0);
                 self.root = one.r;
                 self.root_bound = one.bound;
                 self.set_parent(one.r, ROOT);
             }
             _ => {
-                self.clear_nodes(atoms.len() - 1);
+                self.resize_nodes(atoms.len() - 1);
                 self.root_bound = build_morton(atoms, &mut self.nodes);
                 self.root = Ref::node(0);
                 self.relink_all();
@@ -211,7 +211,7 @@ impl<B: Bound> Tree<B> {
     /// Resizes the node arrays to `n` nodes, releasing spare capacity, for
     /// a build that writes every node and parent link: the old ones are
     /// left to be overwritten rather than cleared first.
-    fn clear_nodes(&mut self, n: usize) {
+    fn resize_nodes(&mut self, n: usize) {
         self.nodes.truncate(n);
         self.nodes.resize(n, Node::empty());
         self.nodes.shrink_to(n);
