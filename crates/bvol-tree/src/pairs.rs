@@ -124,7 +124,7 @@ impl<B: Bound> Tree<B> {
         // Last chunk first: in preorder a node's subtree follows it, so going
         // backwards a node's two subtrees were searched just before it, and
         // the search between them finds their nodes still in cache.
-        let chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).rev().collect();
+        let mut chunks: Vec<_> = (0..self.nodes.len()).step_by(CHUNK).rev().collect();
         let range = |start: usize| start..(start + CHUNK).min(self.nodes.len());
         let node_pairs;
         if one_thread() {
@@ -146,7 +146,17 @@ impl<B: Bound> Tree<B> {
                 *pair = ordered(*pair);
             }
         } else {
-            let (parts, visits): (Vec<Vec<(u32, u32)>>, Vec<u64>) = chunks
+            // The root's chunk runs first: its descents (the root's
+            // subtrees against each other, and its nearest descendants')
+            // are the longest of the search, and begun last they would be
+            // left to one thread while the others wait. Its part goes back
+            // to its place before the parts are joined.
+            let top =
+                self.root.is_node().then(|| chunks.len() - 1 - self.root.index() as usize / CHUNK);
+            if let Some(top) = top {
+                chunks[..=top].rotate_right(1);
+            }
+            let (mut parts, visits): (Vec<Vec<(u32, u32)>>, Vec<u64>) = chunks
                 .par_iter()
                 .map(|&start| {
                     with_walker(|walker| {
@@ -156,6 +166,9 @@ impl<B: Bound> Tree<B> {
                 })
                 .unzip();
             node_pairs = visits.iter().sum();
+            if let Some(top) = top {
+                parts[..=top].rotate_left(1);
+            }
             concat(parts, out, 0, ordered);
         }
         SearchStats { node_pairs, pairs: out.len() as u64 }
