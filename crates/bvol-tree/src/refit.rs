@@ -572,6 +572,7 @@ mod tests {
             gained += if was_late && tree.late > 0 { tree.late_gain } else { 0 };
             layouts += usize::from(was_late && tree.late == 0);
             assert_exact(&tree, &boxes);
+            tree.validate().unwrap_or_else(|v| panic!("frame {frame}: {v}"));
             assert!(tree.late * WALK_LATE <= 2 * n, "frame {frame}: {} nodes late", tree.late);
         }
         assert!(blocks >= 10 && layouts >= 2, "{blocks} refits in blocks, {layouts} layouts");
