@@ -52,6 +52,10 @@ struct Visit {
     y: u32,
 }
 
+/// A search's pairs in runs, in their order: what a walker found, as the
+/// walkers of the levels it split found them, not copied into one list.
+type Parts = Vec<Vec<(u32, u32)>>;
+
 /// The selection bits of a visit's side: both children.
 const BOTH: u32 = 0b11 << SELECT;
 /// Where a side's selection bits start.
@@ -156,7 +160,7 @@ impl<B: Bound> Tree<B> {
             if let Some(top) = top {
                 chunks[..=top].rotate_right(1);
             }
-            let (mut parts, visits): (Vec<Vec<(u32, u32)>>, Vec<u64>) = chunks
+            let (mut parts, visits): (Vec<Parts>, Vec<u64>) = chunks
                 .par_iter()
                 .map(|&start| {
                     with_walker(|walker| {
@@ -169,7 +173,7 @@ impl<B: Bound> Tree<B> {
             if let Some(top) = top {
                 parts[..=top].rotate_left(1);
             }
-            concat(parts, out, 0, ordered);
+            concat(parts.into_iter().flatten().collect(), out, ordered);
         }
         SearchStats { node_pairs, pairs: out.len() as u64 }
     }
@@ -205,7 +209,7 @@ impl<B: Bound> Tree<B> {
             let visits = walker.expand(&search, first, TASKS);
             (visits, walker.take().0)
         });
-        let parts: Vec<Vec<(u32, u32)>> = visits
+        let parts: Vec<Parts> = visits
             .par_chunks(TASKS / 64)
             .map(|visits| {
                 with_walker(|walker| {
@@ -214,8 +218,8 @@ impl<B: Bound> Tree<B> {
                 })
             })
             .collect();
-        out.extend_from_slice(&head);
-        concat(parts, &mut out, head.len(), |pair| pair);
+        let all = head.into_iter().chain(parts.into_iter().flatten()).collect();
+        concat(all, &mut out, |pair| pair);
         out
     }
 }
@@ -259,20 +263,15 @@ fn ordered(pair: (u32, u32)) -> (u32, u32) {
     (pair.0.min(pair.1), pair.0.max(pair.1))
 }
 
-/// Writes the parts in order to `out` from `start` on, each pair passed
-/// through `f`, and cuts `out` there: a rayon task a part, each writing its
-/// own stretch of `out`: with millions of pairs, one thread copying them
-/// after the search would add a noticeable share of its time. What `out`
-/// held past `start` is overwritten rather than cleared first, so that the
-/// last search's pairs save filling that room with zeros.
-fn concat(
-    parts: Vec<Vec<(u32, u32)>>,
-    out: &mut Vec<(u32, u32)>,
-    start: usize,
-    f: impl Fn((u32, u32)) -> (u32, u32) + Sync,
-) {
-    out.resize(start + parts.iter().map(Vec::len).sum::<usize>(), (0, 0));
-    let mut rest = &mut out[start..];
+/// Writes the parts in order to `out`, each pair passed through `f`, and
+/// cuts `out` there: a rayon task a part, each writing its own stretch of
+/// `out`: with millions of pairs, one thread copying them after the search
+/// would add a noticeable share of its time. What `out` held is overwritten
+/// rather than cleared first, so that the last search's pairs save filling
+/// that room with zeros.
+fn concat(parts: Parts, out: &mut Vec<(u32, u32)>, f: impl Fn((u32, u32)) -> (u32, u32) + Sync) {
+    out.resize(parts.iter().map(Vec::len).sum::<usize>(), (0, 0));
+    let mut rest = &mut out[..];
     let mut stretches = Vec::with_capacity(parts.len());
     for part in &parts {
         let (stretch, tail) = std::mem::take(&mut rest).split_at_mut(part.len());
@@ -346,6 +345,13 @@ struct Walker {
     /// The visits of the next level.
     next: Buf<Visit>,
     out: Buf<(u32, u32)>,
+    /// The pairs that follow `out`: the parts of the two halves of a split
+    /// level, as the halves' walkers gave them. A descent ends at a split,
+    /// so `out` takes nothing after them. Copied into `out` at every join
+    /// instead, the pairs under a large leaf (most of a search's, in a world
+    /// of mixed sizes) were copied once for each split above them, on one
+    /// thread at a time.
+    after: Parts,
     /// Node pairs visited since the last [`Walker::take`].
     visits: u64,
 }
@@ -389,12 +395,9 @@ impl Walker {
                     })
                 };
                 let (a, b) = rayon::join(|| half(left), || half(right));
-                for (pairs, visits) in [a, b] {
+                for (parts, visits) in [a, b] {
                     self.visits += visits;
-                    self.out.reserve(pairs.len());
-                    self.out.items[self.out.len..self.out.len + pairs.len()]
-                        .copy_from_slice(&pairs);
-                    self.out.len += pairs.len();
+                    self.after.extend(parts);
                 }
                 self.now.len = 0;
                 return;
@@ -509,11 +512,13 @@ impl Walker {
         self.descend(s);
     }
 
-    /// The pairs found and the node pairs visited so far, leaving both
-    /// empty.
-    fn take(&mut self) -> (Vec<(u32, u32)>, u64) {
-        let pairs = self.out.items[..self.out.len].to_vec();
+    /// The pairs found, in parts, and the node pairs visited so far,
+    /// leaving both empty.
+    fn take(&mut self) -> (Parts, u64) {
+        let mut parts = Vec::with_capacity(1 + self.after.len());
+        parts.push(self.out.items[..self.out.len].to_vec());
+        parts.append(&mut self.after);
         self.out.len = 0;
-        (pairs, std::mem::take(&mut self.visits))
+        (parts, std::mem::take(&mut self.visits))
     }
 }
