@@ -409,6 +409,7 @@ impl Walker {
 
     /// Visits the current level, filling the next.
     fn level<B: Bound>(&mut self, s: &Search<B>) {
+        debug_assert!(self.after.is_empty(), "pairs filed after a split's parts");
         let n = self.now.len;
         self.visits += n as u64;
         self.next.len = 0;
@@ -487,6 +488,7 @@ impl Walker {
     /// internal nodes `nodes`: each node's two children against each other,
     /// then the levels below.
     fn siblings<B: Bound>(&mut self, s: &Search<B>, nodes: std::ops::Range<usize>) {
+        debug_assert!(self.after.is_empty(), "pairs filed after a split's parts");
         self.next.len = 0;
         // Each node's outcome is filed through windows of four.
         self.next.reserve(nodes.len() + 4);
