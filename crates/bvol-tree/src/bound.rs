@@ -5,6 +5,8 @@ use std::fmt::{self, Debug};
 use bvol_volumes::{Aabb, Ray, Sphere};
 use glam::{Vec3, Vec3A};
 
+use crate::{AabbPair, BoundPair};
+
 /// Why a bound cannot go in a tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum BoundError {
@@ -50,6 +52,9 @@ impl std::error::Error for BoundError {}
 /// Implemented for [`Aabb`] (the fast choice) and [`Sphere`] (internal nodes
 /// are exact minimal sphere merges; slower, kept to compare the two).
 pub trait Bound: Copy + Default + PartialEq + Debug + Send + Sync + 'static {
+    /// How an internal node stores its two children's bounds: `[Self; 2]`,
+    /// or a layout the pair search reads faster ([`AabbPair`] for boxes).
+    type Pair: BoundPair<Self>;
     /// The smallest bound of this kind holding both.
     fn merge(&self, other: &Self) -> Self;
     /// Whether the two overlap or touch.
@@ -86,6 +91,8 @@ pub trait Bound: Copy + Default + PartialEq + Debug + Send + Sync + 'static {
 }
 
 impl Bound for Aabb {
+    type Pair = AabbPair;
+
     #[inline]
     fn merge(&self, other: &Self) -> Self {
         Aabb::merge(self, other)
@@ -162,6 +169,8 @@ impl Bound for Aabb {
 }
 
 impl Bound for Sphere {
+    type Pair = [Sphere; 2];
+
     /// The exact minimal merge (the larger one when it holds the other).
     fn merge(&self, other: &Self) -> Self {
         Sphere::merge(self, other)

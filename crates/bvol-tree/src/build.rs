@@ -119,7 +119,7 @@ fn build_at<B: Bound, N: NodeOut<B>>(
     } else {
         (sub(left, left_out, base + 1), sub(right, right_out, right_base))
     };
-    head[0].set([lb, rb], [lr, rr]);
+    head[0].set([lb, rb], [lr, rr], base);
     lb.merge(&rb)
 }
 

@@ -92,6 +92,12 @@ pub enum Violation {
         /// The node.
         node: u32,
     },
+    /// An internal node's stored visit sides (what its children lead to in
+    /// a pair search) are not those of its children at its index.
+    StaleVisits {
+        /// The node.
+        node: u32,
+    },
     /// The number of leaves reached differs from the number of ids recorded.
     LeafCount {
         /// Leaves reached from the root.
@@ -126,6 +132,9 @@ impl fmt::Display for Violation {
             }
             Violation::BadLink { node } => {
                 write!(f, "node {node} is reached twice, is free, or is out of range")
+            }
+            Violation::StaleVisits { node } => {
+                write!(f, "node {node} stores visits that are not its children's")
             }
             Violation::LeafCount { reached, recorded } => {
                 write!(f, "{reached} leaves reached from the root but {recorded} ids recorded")

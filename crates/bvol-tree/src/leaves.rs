@@ -30,7 +30,7 @@ impl<B: Bound> Leaves<'_, B> {
             ROOT => Some(self.root_bound),
             p => {
                 let node = &self.nodes[p as usize];
-                Some(node.bounds[node.side_of(Ref::leaf(id))])
+                Some(node.bound(node.side_of(Ref::leaf(id))))
             }
         }
     }
@@ -42,7 +42,7 @@ impl<B: Bound> Leaves<'_, B> {
             .iter()
             .zip(self.parents)
             .filter(|(_, p)| **p != NONE)
-            .flat_map(|(node, _)| node.child.into_iter().zip(node.bounds))
+            .flat_map(|(node, _)| node.child.into_iter().zip(node.bounds()))
             .filter(|(c, _)| c.is_leaf())
             .map(|(c, b)| (c.index(), b))
     }

@@ -49,6 +49,7 @@
 #![warn(missing_docs)]
 
 mod bound;
+mod bound_pair;
 mod build;
 mod changes;
 mod check;
@@ -75,6 +76,7 @@ mod upkeep;
 mod validate;
 
 pub use bound::{Bound, BoundError};
+pub use bound_pair::{AabbPair, BoundPair};
 pub use config::Config;
 pub use error::{TreeError, Violation};
 pub use node::Slot;

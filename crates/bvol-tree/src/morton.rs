@@ -247,7 +247,7 @@ pub(crate) fn lbvh<B: Bound, N: NodeOut<B>>(
     };
     let (lr, lb) = sub(0..mid, left_out, base + 1);
     let (rr, rb) = sub(mid..codes.len(), right_out, base + mid as u32);
-    head[0].set([lb, rb], [lr, rr]);
+    head[0].set([lb, rb], [lr, rr], base);
     lb.merge(&rb)
 }
 

@@ -25,7 +25,7 @@ impl<B: Bound> Tree<B> {
             for side in 0..2 {
                 let c = node.child[side];
                 if c.is_leaf()
-                    && bounds.get(c.index() as usize).is_some_and(|b| *b != node.bounds[side])
+                    && bounds.get(c.index() as usize).is_some_and(|b| *b != node.bound(side))
                 {
                     moved.push(c.index());
                 }
@@ -56,7 +56,7 @@ impl<B: Bound> Tree<B> {
         for &(id, bound) in jumped {
             let p = self.leaf_parents[id as usize];
             let node = &mut self.nodes[p as usize];
-            node.bounds[node.side_of(Ref::leaf(id))] = bound;
+            node.set_bound(node.side_of(Ref::leaf(id)), bound);
         }
     }
 

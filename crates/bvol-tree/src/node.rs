@@ -8,7 +8,7 @@
 
 use std::fmt;
 
-use crate::Bound;
+use crate::{Bound, BoundPair};
 
 /// Ids must be below this: they index the tree's per-id arrays directly,
 /// and a child reference marks a leaf with bit 31 (and a staged rebuild's
@@ -18,6 +18,11 @@ pub(crate) const ID_LIMIT: u32 = 1 << 28;
 pub(crate) const ROOT: u32 = u32::MAX - 1;
 /// The parent recorded for a free node or an absent id.
 pub(crate) const NONE: u32 = u32::MAX;
+/// Where a visit side's selection bits start: bit 30 selects child 0, bit 31
+/// child 1 (node indices are below [`ID_LIMIT`]).
+pub(crate) const SELECT: u32 = 30;
+/// The selection bits of a visit side with both children.
+pub(crate) const BOTH: u32 = 0b11 << SELECT;
 
 /// A child reference: an internal node's index, or a leaf's id with
 /// [`Ref::LEAF`] set.
@@ -64,24 +69,110 @@ impl Ref {
 /// An internal node: two children and their bounds. A leaf child's bound is
 /// the user's tight bound; an internal child's bound contains everything below
 /// it (exactly their merge after a refit, larger after an enlargement).
+///
+/// One cache line: the pair search reads a node whole at every step, and a
+/// node across two lines would cost two fetches.
+///
+/// A node also holds the visit side each child leads to in a pair search:
+/// an internal child, its index with both its children selected; a leaf,
+/// this node's own index with the leaf's side alone selected (its bound is
+/// here). Worked out in the search, they were a tenth of its instructions;
+/// stored, every change of a node's children or index rewrites them
+/// ([`Node::place`]), and [`Tree::validate`](crate::Tree::validate) checks
+/// them.
 #[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
 pub(crate) struct Node<B: Bound> {
     /// The children's bounds, side 0 and side 1.
-    pub(crate) bounds: [B; 2],
-    /// The children.
+    pair: B::Pair,
+    /// The children. Whoever changes them calls [`Node::place`].
     pub(crate) child: [Ref; 2],
+    /// The visit side each child leads to (see above).
+    visit: [u32; 2],
 }
 
 impl<B: Bound> Node<B> {
+    /// Node `at`, with children `child` of bounds `bounds`.
+    #[inline]
+    pub(crate) fn new(bounds: [B; 2], child: [Ref; 2], at: u32) -> Self {
+        let mut node = Node { pair: B::Pair::new(bounds), child, visit: [0; 2] };
+        node.place(at);
+        node
+    }
+
     /// A node with no children yet (a free node, or one a build fills later).
     pub(crate) fn empty() -> Self {
-        Node { bounds: [B::default(); 2], child: [Ref::NONE; 2] }
+        Node { pair: B::Pair::new([B::default(); 2]), child: [Ref::NONE; 2], visit: [0; 2] }
+    }
+
+    /// Rewrites the visit sides for the node's children as node `at`.
+    #[inline]
+    pub(crate) fn place(&mut self, at: u32) {
+        self.visit = Self::visits(self.child, at);
+    }
+
+    /// The visit sides of children `child` of node `at`.
+    #[inline]
+    fn visits(child: [Ref; 2], at: u32) -> [u32; 2] {
+        debug_assert!(at < ID_LIMIT);
+        let side = |i: usize| match child[i].is_node() {
+            true => child[i].index() | BOTH,
+            false => at | 1 << (SELECT as usize + i),
+        };
+        [side(0), side(1)]
+    }
+
+    /// Whether the visit sides are those of node `at`'s children.
+    pub(crate) fn placed_at(&self, at: u32) -> bool {
+        self.visit == Self::visits(self.child, at)
+    }
+
+    /// The visit sides the children lead to.
+    #[inline(always)]
+    pub(crate) fn visit(&self) -> [u32; 2] {
+        self.visit
+    }
+
+    /// Which children are leaves: bit `i` for child `i`.
+    #[inline(always)]
+    pub(crate) fn leaves(&self) -> u32 {
+        self.child[0].0 >> 31 | (self.child[1].0 >> 31) << 1
+    }
+
+    /// The bound of child `side`.
+    #[inline]
+    pub(crate) fn bound(&self, side: usize) -> B {
+        self.pair.get(side)
+    }
+
+    /// The bounds of both children.
+    #[inline]
+    pub(crate) fn bounds(&self) -> [B; 2] {
+        [self.pair.get(0), self.pair.get(1)]
+    }
+
+    /// Sets the bound of child `side`.
+    #[inline]
+    pub(crate) fn set_bound(&mut self, side: usize, bound: B) {
+        self.pair.set(side, bound);
+    }
+
+    /// Sets the bounds of both children.
+    #[inline]
+    pub(crate) fn set_bounds(&mut self, bounds: [B; 2]) {
+        self.pair = B::Pair::new(bounds);
+    }
+
+    /// The children's bounds together, as the pair search tests them.
+    #[inline]
+    pub(crate) fn pair(&self) -> &B::Pair {
+        &self.pair
     }
 
     /// The merge of both children's bounds: this node's tight bound.
     #[inline]
     pub(crate) fn merged(&self) -> B {
-        self.bounds[0].merge(&self.bounds[1])
+        self.pair.merged()
     }
 
     /// Which side holds `r` (side 1 if neither: callers know it is there).
@@ -95,20 +186,20 @@ impl<B: Bound> Node<B> {
 /// references alone (a staged rebuild's topology, whose bounds the refit that
 /// installs it fills in: 8 bytes a node instead of 56 for boxes).
 pub(crate) trait NodeOut<B: Bound>: Send {
-    /// Writes the node with children `child` of bounds `bounds`.
-    fn set(&mut self, bounds: [B; 2], child: [Ref; 2]);
+    /// Writes node `at` with children `child` of bounds `bounds`.
+    fn set(&mut self, bounds: [B; 2], child: [Ref; 2], at: u32);
 }
 
 impl<B: Bound> NodeOut<B> for Node<B> {
     #[inline]
-    fn set(&mut self, bounds: [B; 2], child: [Ref; 2]) {
-        *self = Node { bounds, child };
+    fn set(&mut self, bounds: [B; 2], child: [Ref; 2], at: u32) {
+        *self = Node::new(bounds, child, at);
     }
 }
 
 impl<B: Bound> NodeOut<B> for [Ref; 2] {
     #[inline]
-    fn set(&mut self, _: [B; 2], child: [Ref; 2]) {
+    fn set(&mut self, _: [B; 2], child: [Ref; 2], _: u32) {
         *self = child;
     }
 }

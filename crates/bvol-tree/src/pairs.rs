@@ -23,8 +23,8 @@ use std::cell::RefCell;
 
 use rayon::prelude::*;
 
-use crate::node::{Node, Ref};
-use crate::{Bound, Tree};
+use crate::node::{BOTH, Node, Ref, SELECT};
+use crate::{Bound, BoundPair, Tree};
 
 /// Internal nodes per task of a one-tree search: small enough for work
 /// stealing to balance 16+ threads, large enough that per-task overhead is
@@ -56,11 +56,6 @@ struct Visit {
 /// walkers of the levels it split found them, not copied into one list.
 type Parts = Vec<Vec<(u32, u32)>>;
 
-/// The selection bits of a visit's side: both children.
-const BOTH: u32 = 0b11 << SELECT;
-/// Where a side's selection bits start.
-const SELECT: u32 = 30;
-
 impl Visit {
     /// The node index of a side.
     #[inline(always)]
@@ -68,11 +63,25 @@ impl Visit {
         side & ((1 << SELECT) - 1)
     }
 
-    /// Whether child `i` of a side takes part.
+    /// The selection bits of a side, bit `i` for child `i`.
     #[inline(always)]
-    fn selects(side: u32, i: usize) -> bool {
-        side >> (SELECT as usize + i) & 1 != 0
+    fn selected(side: u32) -> u32 {
+        side >> SELECT
     }
+}
+
+/// Bits `i` (of one node's children) spread over the four outcomes of a
+/// visit, `2 i + j`: the same on both of `j`'s.
+#[inline(always)]
+fn spread_first(bits: u32) -> u32 {
+    ((bits & 1) * 0b0011) | ((bits >> 1) * 0b1100)
+}
+
+/// Bits `j` (of the other node's children) spread over the four outcomes,
+/// `2 i + j`: the same on both of `i`'s.
+#[inline(always)]
+fn spread_second(bits: u32) -> u32 {
+    bits * 0b0101
 }
 
 /// A pair search over one tree (`a` and `b` the same nodes, each pair found
@@ -221,32 +230,6 @@ impl<B: Bound> Tree<B> {
         let all = head.into_iter().chain(parts.into_iter().flatten()).collect();
         concat(all, &mut out, |pair| pair);
         out
-    }
-}
-
-/// What each child of a visited node leads to: its id or index, whether it
-/// is a leaf, and the side of a visit it makes (a node with both its
-/// children selected, or a leaf's parent with the leaf's side alone).
-struct Lead {
-    id: [u32; 2],
-    leaf: [bool; 2],
-    visit: [u32; 2],
-}
-
-impl Lead {
-    /// The leads of the children of node `n`, at `index`.
-    #[inline(always)]
-    fn of<B: Bound>(n: &Node<B>, index: u32) -> Lead {
-        debug_assert!(index < 1 << SELECT);
-        let side = |i: usize| {
-            let c = n.child[i];
-            if c.is_node() { c.index() | BOTH } else { index | 1 << (SELECT as usize + i) }
-        };
-        Lead {
-            id: [n.child[0].index(), n.child[1].index()],
-            leaf: [!n.child[0].is_node(), !n.child[1].is_node()],
-            visit: [side(0), side(1)],
-        }
     }
 }
 
@@ -440,31 +423,28 @@ impl Walker {
         pending
     }
 
-    /// One visit: the selected children of `x` against those of `y`. The
-    /// nodes are copied in and each child's lead worked out once, and the
-    /// four outcomes go to fixed windows of the output and the next level
-    /// (one bounds check each, not one a push).
+    /// One visit: the selected children of `x` against those of `y`, the
+    /// four overlap tests at once ([`BoundPair::overlaps`]). The four
+    /// outcomes go to fixed windows of the output and the next level (one
+    /// bounds check each, not one a push).
     #[inline(always)]
     fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
-        let (x, y) = (Visit::node(v.x), Visit::node(v.y));
-        let (na, nb) = (s.a[x as usize], s.b[y as usize]);
-        let (la, lb) = (Lead::of(&na, x), Lead::of(&nb, y));
-        let mut hits = [false; 4];
-        for (k, hit) in hits.iter_mut().enumerate() {
-            let (i, j) = (k >> 1, k & 1);
-            let selected = Visit::selects(v.x, i) & Visit::selects(v.y, j);
-            *hit = selected & na.bounds[i].overlaps(&nb.bounds[j]);
-        }
-        self.file((&la, &lb), hits);
+        let (na, nb) = (&s.a[Visit::node(v.x) as usize], &s.b[Visit::node(v.y) as usize]);
+        let selected = spread_first(Visit::selected(v.x)) & spread_second(Visit::selected(v.y));
+        let hits = na.pair().overlaps(nb.pair()) & selected;
+        self.file((na, nb), hits);
     }
 
-    /// Files the outcomes `hits` of children `i` of one node against
-    /// children `j` of another (index `2 i + j`): two leaves are reported; a
-    /// leaf against a subtree becomes a visit of the leaf's parent with only
-    /// the leaf's side selected; two subtrees a visit of both. Branch-free:
-    /// every outcome is written, the lengths advanced by the verdicts.
+    /// Files the outcomes `hits` (bit `2 i + j`) of children `i` of node
+    /// `na` against children `j` of `nb`: two leaves are reported; a leaf
+    /// against a subtree becomes a visit of the leaf's parent with only the
+    /// leaf's side selected, two subtrees a visit of both: the visit sides
+    /// the nodes store. Branch-free: every outcome is written, the lengths
+    /// advanced by the verdicts.
     #[inline(always)]
-    fn file(&mut self, (la, lb): (&Lead, &Lead), hits: [bool; 4]) {
+    fn file<B: Bound>(&mut self, (na, nb): (&Node<B>, &Node<B>), hits: u32) {
+        let leaves = spread_first(na.leaves()) & spread_second(nb.leaves());
+        let (va, vb) = (na.visit(), nb.visit());
         let (next_len, out_len) = (self.next.len, self.out.len);
         // Slices of four (the callers reserved room): the conversions cannot fail.
         let next: &mut [Visit; 4] =
@@ -472,13 +452,12 @@ impl Walker {
         let out: &mut [(u32, u32); 4] =
             (&mut self.out.items[out_len..out_len + 4]).try_into().unwrap();
         let (mut visits, mut pairs) = (0, 0);
-        for (k, &hit) in hits.iter().enumerate() {
+        for k in 0..4 {
             let (i, j) = (k >> 1, k & 1);
-            let leaves = la.leaf[i] & lb.leaf[j];
-            out[pairs & 3] = (la.id[i], lb.id[j]);
-            pairs += usize::from(hit & leaves);
-            next[visits & 3] = Visit { x: la.visit[i], y: lb.visit[j] };
-            visits += usize::from(hit & !leaves);
+            out[pairs & 3] = (na.child[i].index(), nb.child[j].index());
+            pairs += (hits & leaves) as usize >> k & 1;
+            next[visits & 3] = Visit { x: va[i], y: vb[j] };
+            visits += (hits & !leaves) as usize >> k & 1;
         }
         self.next.len += visits;
         self.out.len += pairs;
@@ -504,10 +483,9 @@ impl Walker {
             let n = &s.a[x];
             // Free nodes have no second child.
             if n.child[1] != Ref::NONE {
-                let lead = Lead::of(n, x as u32);
                 // Child 0 against child 1 only: the outcome at index 1.
-                let hit = n.bounds[0].overlaps(&n.bounds[1]);
-                self.file((&lead, &lead), [false, hit, false, false]);
+                let hit = n.pair().overlaps(n.pair()) & 0b0010;
+                self.file((n, n), hit);
             }
         }
         std::mem::swap(&mut self.now, &mut self.next);

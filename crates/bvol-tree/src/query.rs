@@ -20,7 +20,7 @@ impl<B: Bound> Tree<B> {
         while let Some(x) = stack.pop() {
             let n = &self.nodes[x as usize];
             for side in 0..2 {
-                if n.bounds[side].overlaps(region) {
+                if n.bound(side).overlaps(region) {
                     let c = n.child[side];
                     if c.is_node() { stack.push(c.index()) } else { found(c.index()) }
                 }
@@ -44,7 +44,7 @@ impl<B: Bound> Tree<B> {
         while let Some(x) = stack.pop() {
             let n = &self.nodes[x as usize];
             for side in 0..2 {
-                if let Some(t) = n.bounds[side].ray_entry(ray, max_t) {
+                if let Some(t) = n.bound(side).ray_entry(ray, max_t) {
                     let c = n.child[side];
                     if c.is_node() { stack.push(c.index()) } else { hit(c.index(), t) }
                 }
@@ -97,7 +97,7 @@ impl<B: Bound> Tree<B> {
             // reported at it, and hit where `ray_cast_all` finds nothing.
             let reach = if limit < max_t { limit.next_up() } else { max_t };
             let n = &self.nodes[x as usize];
-            let t = [n.bounds[0].ray_entry(ray, reach), n.bounds[1].ray_entry(ray, reach)];
+            let t = [n.bound(0).ray_entry(ray, reach), n.bound(1).ray_entry(ray, reach)];
             // Push the farther child first, so the nearer is visited first.
             let order = if t[1].unwrap_or(f32::INFINITY) < t[0].unwrap_or(f32::INFINITY) {
                 [0, 1]
@@ -147,7 +147,7 @@ impl<B: Bound> Tree<B> {
             let n = &self.nodes[x as usize];
             for side in 0..2 {
                 if n.child[side].is_node() {
-                    visit(depth + 1, &n.bounds[side]);
+                    visit(depth + 1, &n.bound(side));
                     stack.push((n.child[side].index(), depth + 1));
                 }
             }

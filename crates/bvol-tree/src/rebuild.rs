@@ -117,7 +117,7 @@ impl<B: Bound> Tree<B> {
             }
             for side in 0..2 {
                 if node.child[side].is_leaf() {
-                    atoms.push(Atom::new(node.child[side], node.bounds[side]));
+                    atoms.push(Atom::new(node.child[side], node.bound(side)));
                 }
             }
         }
@@ -165,7 +165,7 @@ impl<B: Bound> Tree<B> {
         // and a fresh node array would fault its pages in.
         let mut held = Vec::with_capacity(self.len);
         for (node, &parent) in self.nodes.iter().zip(&self.parents) {
-            for (c, bound) in node.child.into_iter().zip(node.bounds) {
+            for (c, bound) in node.child.into_iter().zip(node.bounds()) {
                 if parent != NONE && c.is_leaf() {
                     self.leaf_parents[c.index() as usize] = held.len() as u32;
                     held.push(bound);
@@ -183,7 +183,7 @@ impl<B: Bound> Tree<B> {
                 true => held[self.leaf_parents[c.index() as usize] as usize],
                 false => B::default(),
             };
-            self.nodes[x] = Node { bounds: [leaf(child[0]), leaf(child[1])], child };
+            self.nodes[x] = Node::new([leaf(child[0]), leaf(child[1])], child, x as u32);
             for c in child {
                 self.set_parent(c, x as u32);
             }
@@ -252,7 +252,7 @@ impl<B: Bound> Tree<B> {
         let sums: Vec<f64> = runs
             .map(|(nodes, parents)| {
                 let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
-                let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds));
+                let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
                 children.filter(|(c, _)| c.is_node()).map(|(_, b)| b.cost()).sum::<f64>()
             })
             .collect();

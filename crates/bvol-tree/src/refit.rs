@@ -124,6 +124,7 @@ impl<B: Bound> Tree<B> {
         self.root = Ref::node(0);
         self.parents[0] = ROOT;
         for x in 0..used {
+            self.nodes[x].place(x as u32);
             for side in 0..2 {
                 self.set_parent(self.nodes[x].child[side], x as u32);
             }
@@ -180,7 +181,8 @@ impl<B: Bound> Tree<B> {
                 let c = nodes[x as usize].child[side];
                 if c.is_node() {
                     let merged = nodes[c.index() as usize].merged();
-                    let old = std::mem::replace(&mut nodes[x as usize].bounds[side], merged);
+                    let old = nodes[x as usize].bound(side);
+                    nodes[x as usize].set_bound(side, merged);
                     inner += merged.cost() - old.cost();
                 }
             }
@@ -259,10 +261,12 @@ impl<B: Bound> Tree<B> {
                 continue;
             }
             let node = &mut self.nodes[p as usize];
-            let old = &mut node.bounds[node.side_of(Ref::leaf(id))];
-            if place_leaf(old, bound, hold) {
+            let side = node.side_of(Ref::leaf(id));
+            let mut old = node.bound(side);
+            if place_leaf(&mut old, bound, hold) {
                 jumped.push((id, bound));
             }
+            node.set_bound(side, old);
         }
         jumped
     }
@@ -407,7 +411,7 @@ fn refit_block<B: Bound>(
         }
         let child = |side: usize| {
             let c = node.child[side];
-            c.is_node().then(|| refit(c).map_or(node.bounds[side], Node::merged))
+            c.is_node().then(|| refit(c).map_or(node.bound(side), Node::merged))
         };
         let children = [child(0), child(1)];
         inner += refit_node(node, children, bounds, found);
@@ -470,13 +474,14 @@ fn refit_node<B: Bound>(
     found: &mut Refit,
 ) -> f64 {
     let mut inner = 0.0;
+    let mut now = node.bounds();
     for (side, child) in children.into_iter().enumerate() {
         let c = node.child[side];
         if let Some(b) = child {
             inner += b.cost();
-            node.bounds[side] = b;
+            now[side] = b;
         } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
-            let old = &mut node.bounds[side];
+            let old = &mut now[side];
             if b != *old {
                 found.moved.push(c.index());
                 if place_leaf(old, b, found.hold) {
@@ -485,6 +490,7 @@ fn refit_node<B: Bound>(
             }
         }
     }
+    node.set_bounds(now);
     inner
 }
 
@@ -540,7 +546,7 @@ mod tests {
                     true => tree.nodes[c.index() as usize].merged(),
                     false => boxes[c.index() as usize],
                 };
-                assert_eq!(node.bounds[side], want, "node {x}, side {side}");
+                assert_eq!(node.bound(side), want, "node {x}, side {side}");
             }
         }
     }

@@ -231,7 +231,7 @@ struct Deferred;
 
 impl<B: Bound> Expand<B> for Deferred {
     fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, out: &mut [N], base: u32) -> (Ref, B) {
-        out[0].set([atom.bound; 2], [Ref(DEFERRED | atom.weight), atom.r]);
+        out[0].set([atom.bound; 2], [Ref(DEFERRED | atom.weight), atom.r], base);
         (Ref::node(base), atom.bound)
     }
 }

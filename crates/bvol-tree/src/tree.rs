@@ -250,7 +250,8 @@ impl<B: Bound> Tree<B> {
             return Move::Inside;
         }
         let side = self.nodes[p as usize].side_of(Ref::leaf(id));
-        let old = std::mem::replace(&mut self.nodes[p as usize].bounds[side], bound);
+        let old = self.nodes[p as usize].bound(side);
+        self.nodes[p as usize].set_bound(side, bound);
         if old == bound {
             return Move::Unchanged;
         }
@@ -302,7 +303,8 @@ impl<B: Bound> Tree<B> {
         }
         let slot = self.find_best_sibling(fat);
         let (sibling, sibling_bound) = (self.get_ref(slot), self.get(slot));
-        let node = Node { bounds: [sibling_bound, bound], child: [sibling, leaf] };
+        // Placed at its index when allocated.
+        let node = Node::new([sibling_bound, bound], [sibling, leaf], 0);
         let p = match spare {
             Some(spare) => self.alloc_node_among(node, slot, spare),
             None => self.alloc_node(node),
@@ -328,14 +330,14 @@ impl<B: Bound> Tree<B> {
         }
         let node = self.nodes[p as usize];
         let side = node.side_of(leaf);
-        let (sibling, sibling_bound) = (node.child[1 - side], node.bounds[1 - side]);
+        let (sibling, sibling_bound) = (node.child[1 - side], node.bound(1 - side));
         let slot = self.slot_of_node(p);
         self.link(slot, sibling, sibling_bound);
         self.free_node(p);
         if let Slot::Child { node: g, .. } = slot {
             self.tighten_from(g);
         }
-        node.bounds[side]
+        node.bound(side)
     }
 
     /// Makes node `x`'s own bound (and its ancestors') contain `bound`, the new
@@ -417,7 +419,7 @@ impl<B: Bound> Tree<B> {
             let mut directs = [0.0; 2];
             let mut areas = [0.0; 2];
             for side in 0..2 {
-                let b = &node.bounds[side];
+                let b = &node.bound(side);
                 directs[side] = b.merge(d).cost();
                 let cost = directs[side] + inherited;
                 if cost < best_cost {
@@ -430,7 +432,7 @@ impl<B: Bound> Tree<B> {
             }
             let side = if lower[0] == lower[1] {
                 // Both contain `d`: no cost difference, go to the nearer one.
-                let dist = |s: usize| (node.bounds[s].center() - center_d).length_squared();
+                let dist = |s: usize| (node.bound(s).center() - center_d).length_squared();
                 usize::from(dist(1) < dist(0))
             } else {
                 usize::from(lower[1] < lower[0])
@@ -459,7 +461,7 @@ impl<B: Bound> Tree<B> {
     pub(crate) fn get(&self, slot: Slot) -> B {
         match slot {
             Slot::Root => self.root_bound,
-            Slot::Child { node, side } => self.nodes[node as usize].bounds[side],
+            Slot::Child { node, side } => self.nodes[node as usize].bound(side),
         }
     }
 
@@ -476,7 +478,7 @@ impl<B: Bound> Tree<B> {
     pub(crate) fn set(&mut self, slot: Slot, bound: B) {
         match slot {
             Slot::Root => self.root_bound = bound,
-            Slot::Child { node, side } => self.nodes[node as usize].bounds[side] = bound,
+            Slot::Child { node, side } => self.nodes[node as usize].set_bound(side, bound),
         }
     }
 
@@ -491,7 +493,8 @@ impl<B: Bound> Tree<B> {
             Slot::Child { node, side } => {
                 let n = &mut self.nodes[node as usize];
                 n.child[side] = r;
-                n.bounds[side] = bound;
+                n.set_bound(side, bound);
+                n.place(node);
                 self.set_parent(r, node);
             }
         }
@@ -507,19 +510,23 @@ impl<B: Bound> Tree<B> {
         }
     }
 
-    /// A node from the free list, or a new one; its parent is set by `link`.
+    /// A node from the free list, or a new one, holding `node` placed at its
+    /// index ([`Node::place`]); its parent is set by `link`.
     pub(crate) fn alloc_node(&mut self, node: Node<B>) -> u32 {
         self.mark_reshaped();
         if self.free == Ref::NONE {
+            let x = self.nodes.len() as u32;
             self.nodes.push(node);
+            self.nodes[x as usize].place(x);
             self.parents.push(NONE);
             self.enlarged.push(false);
-            return (self.nodes.len() - 1) as u32;
+            return x;
         }
         let x = self.free.index();
         self.free = self.nodes[x as usize].child[0];
         self.free_count -= 1;
         self.nodes[x as usize] = node;
+        self.nodes[x as usize].place(x);
         x
     }
 
@@ -542,6 +549,7 @@ impl<B: Bound> Tree<B> {
         spare.remove(&x);
         self.mark_reshaped();
         self.nodes[x as usize] = node;
+        self.nodes[x as usize].place(x);
         x
     }
 

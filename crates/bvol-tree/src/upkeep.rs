@@ -82,7 +82,7 @@ impl<B: Bound> Tree<B> {
                 if c.is_node() && self.enlarged[c.index() as usize] {
                     stack.push(c.index());
                 } else {
-                    atoms.push(Atom::new(c, n.bounds[side]));
+                    atoms.push(Atom::new(c, n.bound(side)));
                 }
             }
         }
@@ -101,7 +101,7 @@ impl<B: Bound> Tree<B> {
         for (i, n) in local.iter().enumerate() {
             let x = freed[i];
             self.nodes[x as usize] =
-                Node { bounds: n.bounds, child: [place(n.child[0]), place(n.child[1])] };
+                Node::new(n.bounds(), [place(n.child[0]), place(n.child[1])], x);
             self.enlarged[x as usize] = false;
             for side in 0..2 {
                 self.set_parent(self.nodes[x as usize].child[side], x);

@@ -8,7 +8,8 @@ impl<B: Bound> Tree<B> {
     /// Checks every invariant of the tree and returns the first violation:
     /// every stored bound valid; every internal node's bound (where it hangs)
     /// containing both its children's; parent links of nodes and leaves
-    /// pointing where they hang; every node reached once from the root, none
+    /// pointing where they hang; every node's stored visit sides those of
+    /// its children; every node reached once from the root, none
     /// of them free; every recorded id reached, and nothing else; in-use plus
     /// free nodes adding up to the node array. O(n).
     pub fn validate(&self) -> Result<(), Violation> {
@@ -41,11 +42,14 @@ impl<B: Bound> Tree<B> {
             seen[x as usize] = true;
             reached += 1;
             let node = &self.nodes[x as usize];
+            if !node.placed_at(x) {
+                return Err(Violation::StaleVisits { node: x });
+            }
             let own = self.get(slot);
             for side in 0..2 {
                 let child = Slot::Child { node: x, side };
-                self.check_bound(child, &node.bounds[side])?;
-                if !own.contains(&node.bounds[side]) {
+                self.check_bound(child, &node.bound(side))?;
+                if !own.contains(&node.bound(side)) {
                     return Err(Violation::NotContained { slot, node: x, side });
                 }
                 stack.push((node.child[side], child));
