@@ -70,6 +70,22 @@ impl Visit {
     }
 }
 
+/// Two words side by side in one, the first in the low half.
+#[inline(always)]
+fn words([first, second]: [u32; 2]) -> u64 {
+    u64::from(first) | u64::from(second) << 32
+}
+
+/// The four pairs `2 i + j` of word `i` of `a` (low half) and word `j` of
+/// `b` (high half), each pair one word: a pair of words is built with a
+/// mask and an or, and stored in one go.
+#[inline(always)]
+fn crossed(a: u64, b: u64) -> [u64; 4] {
+    let (a0, a1) = (a & u64::from(u32::MAX), a >> 32);
+    let (b0, b1) = (b << 32, b & !u64::from(u32::MAX));
+    [a0 | b0, a0 | b1, a1 | b0, a1 | b1]
+}
+
 /// Bits `i` (of one node's children) spread over the four outcomes of a
 /// visit, `2 i + j`: the same on both of `j`'s.
 #[inline(always)]
@@ -228,7 +244,7 @@ impl<B: Bound> Tree<B> {
             })
             .collect();
         let all = head.into_iter().chain(parts.into_iter().flatten()).collect();
-        concat(all, &mut out, |pair| pair);
+        concat(all, &mut out, ids);
         out
     }
 }
@@ -238,12 +254,20 @@ fn one_thread() -> bool {
     rayon::current_num_threads() == 1
 }
 
-/// The search files a pair as it meets it; one pass over the pairs found
-/// orders them for less than ordering the four outcomes of every visit,
-/// kept or not (a tenth of the search's instructions).
+/// The search files a pair as it meets it, two leaves' references; one
+/// pass over the pairs found orders them and takes their ids for less than
+/// doing so for the four outcomes of every visit, kept or not (a tenth of
+/// the search's instructions). Both references carry the leaf flag, so
+/// they order as the ids do.
 #[inline]
 fn ordered(pair: (u32, u32)) -> (u32, u32) {
-    (pair.0.min(pair.1), pair.0.max(pair.1))
+    ids((pair.0.min(pair.1), pair.0.max(pair.1)))
+}
+
+/// The ids of a pair of leaves' references.
+#[inline]
+fn ids(pair: (u32, u32)) -> (u32, u32) {
+    (Ref(pair.0).index(), Ref(pair.1).index())
 }
 
 /// Writes the parts in order to `out`, each pair passed through `f`, and
@@ -444,7 +468,8 @@ impl Walker {
     #[inline(always)]
     fn file<B: Bound>(&mut self, (na, nb): (&Node<B>, &Node<B>), hits: u32) {
         let leaves = spread_first(na.leaves()) & spread_second(nb.leaves());
-        let (va, vb) = (na.visit(), nb.visit());
+        let found = crossed(words(na.child.map(|c| c.0)), words(nb.child.map(|c| c.0)));
+        let visit = crossed(words(na.visit()), words(nb.visit()));
         let (next_len, out_len) = (self.next.len, self.out.len);
         // Slices of four (the callers reserved room): the conversions cannot fail.
         let next: &mut [Visit; 4] =
@@ -453,10 +478,9 @@ impl Walker {
             (&mut self.out.items[out_len..out_len + 4]).try_into().unwrap();
         let (mut visits, mut pairs) = (0, 0);
         for k in 0..4 {
-            let (i, j) = (k >> 1, k & 1);
-            out[pairs & 3] = (na.child[i].index(), nb.child[j].index());
+            out[pairs & 3] = (found[k] as u32, (found[k] >> 32) as u32);
             pairs += (hits & leaves) as usize >> k & 1;
-            next[visits & 3] = Visit { x: va[i], y: vb[j] };
+            next[visits & 3] = Visit { x: visit[k] as u32, y: (visit[k] >> 32) as u32 };
             visits += (hits & !leaves) as usize >> k & 1;
         }
         self.next.len += visits;

@@ -26,12 +26,17 @@ pub fn prefetch<T>(value: &T) {
         use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
         let first = (value as *const T).cast::<i8>();
         let last = first.wrapping_add(size_of::<T>().saturating_sub(1));
+        // A value no larger than its alignment, which divides a 64-byte
+        // line, never straddles two lines: one hint does.
+        let one_line = size_of::<T>() <= align_of::<T>() && align_of::<T>() <= 64;
         // SAFETY: SSE is part of every x86_64 target, and a prefetch only
         // hints: it reads nothing the program sees and cannot fault, whatever
         // the address.
         unsafe {
             _mm_prefetch::<_MM_HINT_T0>(first);
-            _mm_prefetch::<_MM_HINT_T0>(last);
+            if !one_line {
+                _mm_prefetch::<_MM_HINT_T0>(last);
+            }
         }
     }
     #[cfg(not(target_arch = "x86_64"))]
