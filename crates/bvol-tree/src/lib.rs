@@ -54,6 +54,7 @@ mod build;
 mod changes;
 mod check;
 mod config;
+mod cross;
 mod error;
 mod leaves;
 mod morton;

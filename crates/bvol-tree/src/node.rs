@@ -133,12 +133,6 @@ impl<B: Bound> Node<B> {
         self.visit
     }
 
-    /// Which children are leaves: bit `i` for child `i`.
-    #[inline(always)]
-    pub(crate) fn leaves(&self) -> u32 {
-        self.child[0].0 >> 31 | (self.child[1].0 >> 31) << 1
-    }
-
     /// The bound of child `side`.
     #[inline]
     pub(crate) fn bound(&self, side: usize) -> B {

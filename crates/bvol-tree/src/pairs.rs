@@ -23,6 +23,7 @@ use std::cell::RefCell;
 
 use rayon::prelude::*;
 
+use crate::cross::{Cross, cross};
 use crate::node::{BOTH, Node, Ref, SELECT};
 use crate::{Bound, BoundPair, Tree};
 
@@ -68,22 +69,6 @@ impl Visit {
     fn selected(side: u32) -> u32 {
         side >> SELECT
     }
-}
-
-/// Two words side by side in one, the first in the low half.
-#[inline(always)]
-fn words([first, second]: [u32; 2]) -> u64 {
-    u64::from(first) | u64::from(second) << 32
-}
-
-/// The four pairs `2 i + j` of word `i` of `a` (low half) and word `j` of
-/// `b` (high half), each pair one word: a pair of words is built with a
-/// mask and an or, and stored in one go.
-#[inline(always)]
-fn crossed(a: u64, b: u64) -> [u64; 4] {
-    let (a0, a1) = (a & u64::from(u32::MAX), a >> 32);
-    let (b0, b1) = (b << 32, b & !u64::from(u32::MAX));
-    [a0 | b0, a0 | b1, a1 | b0, a1 | b1]
 }
 
 /// Bits `i` (of one node's children) spread over the four outcomes of a
@@ -299,11 +284,16 @@ struct Buf<T> {
 }
 
 impl<T: Copy + Default> Buf<T> {
-    /// Makes room for `k` more pushes.
+    /// Makes room for `k` more pushes: twice that, so that a buffer grows
+    /// by a level's worth at a time. Room is written (filled with defaults)
+    /// when made, so not more than that: the output of a search on one
+    /// thread is the caller's vector, cut to the last search's pairs, and
+    /// doubling it would fill millions of entries every search. The vector's
+    /// own capacity grows by doubling.
     #[inline]
     fn reserve(&mut self, k: usize) {
         if self.len + k > self.items.len() {
-            let n = (self.items.len() * 2).max(self.len + k).max(64);
+            let n = (self.len + 2 * k).max(64);
             self.items.resize(n, T::default());
         }
     }
@@ -467,9 +457,7 @@ impl Walker {
     /// advanced by the verdicts.
     #[inline(always)]
     fn file<B: Bound>(&mut self, (na, nb): (&Node<B>, &Node<B>), hits: u32) {
-        let leaves = spread_first(na.leaves()) & spread_second(nb.leaves());
-        let found = crossed(words(na.child.map(|c| c.0)), words(nb.child.map(|c| c.0)));
-        let visit = crossed(words(na.visit()), words(nb.visit()));
+        let Cross { leaves, refs, visits: sides } = cross(na, nb);
         let (next_len, out_len) = (self.next.len, self.out.len);
         // Slices of four (the callers reserved room): the conversions cannot fail.
         let next: &mut [Visit; 4] =
@@ -478,9 +466,9 @@ impl Walker {
             (&mut self.out.items[out_len..out_len + 4]).try_into().unwrap();
         let (mut visits, mut pairs) = (0, 0);
         for k in 0..4 {
-            out[pairs & 3] = (found[k] as u32, (found[k] >> 32) as u32);
+            out[pairs & 3] = (refs[k] as u32, (refs[k] >> 32) as u32);
             pairs += (hits & leaves) as usize >> k & 1;
-            next[visits & 3] = Visit { x: visit[k] as u32, y: (visit[k] >> 32) as u32 };
+            next[visits & 3] = Visit { x: sides[k] as u32, y: (sides[k] >> 32) as u32 };
             visits += (hits & !leaves) as usize >> k & 1;
         }
         self.next.len += visits;
