@@ -298,6 +298,22 @@ impl<T: Copy + Default> Buf<T> {
         }
     }
 
+    /// The four slots from the length on, where a visit files its
+    /// outcomes. A range-checked slice here, at every visit, made the
+    /// search a sixth slower: the checks, and the registers they hold.
+    ///
+    /// # Safety
+    ///
+    /// Room for four more must have been made ([`Buf::reserve`]) and not
+    /// used since.
+    #[inline(always)]
+    unsafe fn window(&mut self) -> &mut [T; 4] {
+        debug_assert!(self.len + 4 <= self.items.len(), "no room was made for a window");
+        // SAFETY: the caller made room, `len + 4 <= items.len()`: the four
+        // slots are in the vector, and `[T; 4]` has `T`'s alignment.
+        unsafe { &mut *self.items.as_mut_ptr().add(self.len).cast::<[T; 4]>() }
+    }
+
     /// Pushes `item` when `keep` holds; room must have been reserved.
     #[inline(always)]
     fn push_if(&mut self, item: T, keep: bool) {
@@ -418,7 +434,9 @@ impl Walker {
                 bvol_volumes::prefetch(&s.b[Visit::node(ahead.y) as usize]);
             }
             let v = self.now.items[k];
-            self.step(s, v);
+            // SAFETY: room was made for four a visit of the level, and a
+            // visit files at most four pairs and four visits.
+            unsafe { self.step(s, v) };
         }
     }
 
@@ -439,14 +457,18 @@ impl Walker {
 
     /// One visit: the selected children of `x` against those of `y`, the
     /// four overlap tests at once ([`BoundPair::overlaps`]). The four
-    /// outcomes go to fixed windows of the output and the next level (one
-    /// bounds check each, not one a push).
+    /// outcomes go to fixed windows of the output and the next level.
+    ///
+    /// # Safety
+    ///
+    /// As [`Walker::file`].
     #[inline(always)]
-    fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
+    unsafe fn step<B: Bound>(&mut self, s: &Search<B>, v: Visit) {
         let (na, nb) = (&s.a[Visit::node(v.x) as usize], &s.b[Visit::node(v.y) as usize]);
         let selected = spread_first(Visit::selected(v.x)) & spread_second(Visit::selected(v.y));
         let hits = na.pair().overlaps(nb.pair()) & selected;
-        self.file((na, nb), hits);
+        // SAFETY: the caller's.
+        unsafe { self.file((na, nb), hits) };
     }
 
     /// Files the outcomes `hits` (bit `2 i + j`) of children `i` of node
@@ -455,15 +477,16 @@ impl Walker {
     /// leaf's side selected, two subtrees a visit of both: the visit sides
     /// the nodes store. Branch-free: every outcome is written, the lengths
     /// advanced by the verdicts.
+    ///
+    /// # Safety
+    ///
+    /// The next level and the output have room for four more each
+    /// ([`Buf::window`]).
     #[inline(always)]
-    fn file<B: Bound>(&mut self, (na, nb): (&Node<B>, &Node<B>), hits: u32) {
+    unsafe fn file<B: Bound>(&mut self, (na, nb): (&Node<B>, &Node<B>), hits: u32) {
         let Cross { leaves, refs, visits: sides } = cross(na, nb);
-        let (next_len, out_len) = (self.next.len, self.out.len);
-        // Slices of four (the callers reserved room): the conversions cannot fail.
-        let next: &mut [Visit; 4] =
-            (&mut self.next.items[next_len..next_len + 4]).try_into().unwrap();
-        let out: &mut [(u32, u32); 4] =
-            (&mut self.out.items[out_len..out_len + 4]).try_into().unwrap();
+        // SAFETY: the caller's.
+        let (next, out) = unsafe { (self.next.window(), self.out.window()) };
         let (mut visits, mut pairs) = (0, 0);
         for k in 0..4 {
             out[pairs & 3] = (refs[k] as u32, (refs[k] >> 32) as u32);
@@ -497,7 +520,9 @@ impl Walker {
             if n.child[1] != Ref::NONE {
                 // Child 0 against child 1 only: the outcome at index 1.
                 let hit = n.pair().overlaps(n.pair()) & 0b0010;
-                self.file((n, n), hit);
+                // SAFETY: room was made for four past one a node, and a node
+                // files at most one pair or one visit.
+                unsafe { self.file((n, n), hit) };
             }
         }
         std::mem::swap(&mut self.now, &mut self.next);
