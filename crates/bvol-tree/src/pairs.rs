@@ -504,9 +504,9 @@ impl Walker {
     fn siblings<B: Bound>(&mut self, s: &Search<B>, nodes: std::ops::Range<usize>) {
         debug_assert!(self.after.is_empty(), "pairs filed after a split's parts");
         self.next.len = 0;
-        // Each node's outcome is filed through windows of four.
-        self.next.reserve(nodes.len() + 4);
-        self.out.reserve(nodes.len() + 4);
+        // A node files one pair or one visit at most.
+        self.next.reserve(nodes.len());
+        self.out.reserve(nodes.len());
         self.visits += nodes.len() as u64;
         for x in nodes.rev() {
             // The next chunk's nodes, met in the same order: read while this
@@ -519,10 +519,11 @@ impl Walker {
             // Free nodes have no second child.
             if n.child[1] != Ref::NONE {
                 // Child 0 against child 1 only: the outcome at index 1.
-                let hit = n.pair().overlaps(n.pair()) & 0b0010;
-                // SAFETY: room was made for four past one a node, and a node
-                // files at most one pair or one visit.
-                unsafe { self.file((n, n), hit) };
+                let hit = n.pair().overlaps(n.pair()) & 0b0010 != 0;
+                let ([c0, c1], [v0, v1]) = (n.child, n.visit());
+                let leaves = !c0.is_node() & !c1.is_node();
+                self.out.push_if((c0.0, c1.0), hit & leaves);
+                self.next.push_if(Visit { x: v0, y: v1 }, hit & !leaves);
             }
         }
         std::mem::swap(&mut self.now, &mut self.next);
