@@ -90,6 +90,35 @@ pub trait Bound: Copy + Default + PartialEq + Debug + Send + Sync + 'static {
     fn ray_entry(&self, ray: &Ray, max_t: f32) -> Option<f32>;
 }
 
+/// Two bounds as they are, side by side: the pair of any bound without a
+/// layout of its own (spheres, and bounds defined outside the crate).
+impl<B: Bound> BoundPair<B> for [B; 2] {
+    #[inline]
+    fn new(bounds: [B; 2]) -> Self {
+        bounds
+    }
+
+    #[inline]
+    fn get(&self, side: usize) -> B {
+        self[side]
+    }
+
+    #[inline]
+    fn set(&mut self, side: usize, bound: B) {
+        self[side] = bound;
+    }
+
+    #[inline]
+    fn merged(&self) -> B {
+        self[0].merge(&self[1])
+    }
+
+    #[inline]
+    fn overlaps(&self, other: &Self) -> u32 {
+        (0..4).fold(0, |mask, k| mask | u32::from(self[k >> 1].overlaps(&other[k & 1])) << k)
+    }
+}
+
 impl Bound for Aabb {
     type Pair = AabbPair;
 

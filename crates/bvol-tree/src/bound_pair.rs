@@ -6,8 +6,6 @@ use std::fmt::Debug;
 use bvol_volumes::Aabb;
 use glam::{Vec3, Vec4, Vec4Swizzles};
 
-use crate::Bound;
-
 /// Two bounds side by side (side 0 and side 1): how an internal node of a
 /// [`Tree`](crate::Tree) stores its children's bounds.
 ///
@@ -28,33 +26,6 @@ pub trait BoundPair<B>: Copy + Debug + Send + Sync + 'static {
     /// Which of the four pairs of this pair's and `other`'s bounds overlap:
     /// bit `2 i + j` for side `i` of `self` against side `j` of `other`.
     fn overlaps(&self, other: &Self) -> u32;
-}
-
-impl<B: Bound> BoundPair<B> for [B; 2] {
-    #[inline]
-    fn new(bounds: [B; 2]) -> Self {
-        bounds
-    }
-
-    #[inline]
-    fn get(&self, side: usize) -> B {
-        self[side]
-    }
-
-    #[inline]
-    fn set(&mut self, side: usize, bound: B) {
-        self[side] = bound;
-    }
-
-    #[inline]
-    fn merged(&self) -> B {
-        self[0].merge(&self[1])
-    }
-
-    #[inline]
-    fn overlaps(&self, other: &Self) -> u32 {
-        (0..4).fold(0, |mask, k| mask | u32::from(self[k >> 1].overlaps(&other[k & 1])) << k)
-    }
 }
 
 /// Two boxes stored axis by axis, the two side by side on each: lower x of
@@ -156,17 +127,18 @@ mod tests {
         fn box_pairs_agree_with_the_boxes(a in aabb(), b in aabb(), c in aabb(), d in aabb(), e in aabb()) {
             let pair = AabbPair::new([a, b]);
             prop_assert_eq!([pair.get(0), pair.get(1)], [a, b]);
-            prop_assert_eq!(pair.merged(), Bound::merge(&a, &b));
+            prop_assert_eq!(pair.merged(), a.merge(&b));
             let other = AabbPair::new([c, d]);
-            prop_assert_eq!(pair.overlaps(&other), [a, b].overlaps(&[c, d]));
+            let each = (0..4).fold(0, |m, k| m | u32::from([a, b][k >> 1].overlaps(&[c, d][k & 1])) << k);
+            prop_assert_eq!(pair.overlaps(&other), each);
             let mut changed = pair;
             changed.set(1, e);
             prop_assert_eq!(changed, AabbPair::new([a, e]));
         }
     }
 
-    /// The generic pair's mask, checked bit by bit on boxes that are
-    /// chosen to overlap in exactly one of the four pairings.
+    /// Both pairs' masks, checked bit by bit on boxes that are chosen to
+    /// overlap in exactly one of the four pairings.
     #[test]
     fn the_mask_names_side_of_self_then_side_of_other() {
         let at = |x: f32| Aabb::new(Vec3::new(x, 0.0, 0.0), Vec3::new(x + 1.0, 1.0, 1.0));
