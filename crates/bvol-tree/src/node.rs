@@ -178,7 +178,7 @@ impl<B: Bound> Node<B> {
 
 /// Where a build writes an internal node: the whole [`Node`], or its child
 /// references alone (a staged rebuild's topology, whose bounds the refit that
-/// installs it fills in: 8 bytes a node instead of 56 for boxes).
+/// installs it fills in: 8 bytes a node instead of 64).
 pub(crate) trait NodeOut<B: Bound>: Send {
     /// Writes node `at` with children `child` of bounds `bounds`.
     fn set(&mut self, bounds: [B; 2], child: [Ref; 2], at: u32);
