@@ -303,11 +303,10 @@ impl<B: Bound> Tree<B> {
         }
         let slot = self.find_best_sibling(fat);
         let (sibling, sibling_bound) = (self.get_ref(slot), self.get(slot));
-        // Placed at its index when allocated.
-        let node = Node::new([sibling_bound, bound], [sibling, leaf], 0);
+        let (bounds, child) = ([sibling_bound, bound], [sibling, leaf]);
         let p = match spare {
-            Some(spare) => self.alloc_node_among(node, slot, spare),
-            None => self.alloc_node(node),
+            Some(spare) => self.alloc_node_among(bounds, child, slot, spare),
+            None => self.alloc_node(bounds, child),
         };
         self.set_parent(sibling, p);
         self.leaf_parents[id as usize] = p;
@@ -510,14 +509,13 @@ impl<B: Bound> Tree<B> {
         }
     }
 
-    /// A node from the free list, or a new one, holding `node` placed at its
-    /// index ([`Node::place`]); its parent is set by `link`.
-    pub(crate) fn alloc_node(&mut self, node: Node<B>) -> u32 {
+    /// A node from the free list, or a new one, with children `child` of
+    /// bounds `bounds`; its parent is set by `link`.
+    pub(crate) fn alloc_node(&mut self, bounds: [B; 2], child: [Ref; 2]) -> u32 {
         self.mark_reshaped();
         if self.free == Ref::NONE {
             let x = self.nodes.len() as u32;
-            self.nodes.push(node);
-            self.nodes[x as usize].place(x);
+            self.nodes.push(Node::new(bounds, child, x));
             self.parents.push(NONE);
             self.enlarged.push(false);
             return x;
@@ -525,31 +523,35 @@ impl<B: Bound> Tree<B> {
         let x = self.free.index();
         self.free = self.nodes[x as usize].child[0];
         self.free_count -= 1;
-        self.nodes[x as usize] = node;
-        self.nodes[x as usize].place(x);
+        self.nodes[x as usize] = Node::new(bounds, child, x);
         x
     }
 
-    /// A node from `spare` (free nodes; a new one if none) for `node`, to be
-    /// linked in at `slot`: the first after its parent, or the last when
+    /// A node from `spare` (free nodes; a new one if none) for children
+    /// `child` of bounds `bounds`, to be linked in at `slot`: the first after its parent, or the last when
     /// none is. A refit over the node array from last to first
     /// ([`Tree::refit_pass`]) meets a node so placed after its children
     /// whenever a free node allows (the first after the parent comes before
     /// an internal child too if any does), where the free list's first
     /// would come before a child of its for most insertions.
-    fn alloc_node_among(&mut self, node: Node<B>, slot: Slot, spare: &mut BTreeSet<u32>) -> u32 {
+    fn alloc_node_among(
+        &mut self,
+        bounds: [B; 2],
+        child: [Ref; 2],
+        slot: Slot,
+        spare: &mut BTreeSet<u32>,
+    ) -> u32 {
         let parent = match slot {
             Slot::Child { node, .. } => node,
             Slot::Root => 0,
         };
         let first_after = spare.range(parent..).next().copied();
         let Some(x) = first_after.or_else(|| spare.last().copied()) else {
-            return self.alloc_node(node);
+            return self.alloc_node(bounds, child);
         };
         spare.remove(&x);
         self.mark_reshaped();
-        self.nodes[x as usize] = node;
-        self.nodes[x as usize].place(x);
+        self.nodes[x as usize] = Node::new(bounds, child, x);
         x
     }
 
