@@ -19,6 +19,20 @@ pub(crate) struct Cross {
     pub(crate) visits: [u64; 4],
 }
 
+/// Bits `i` (of one node's children) spread over the four outcomes of a
+/// visit, `2 i + j`: the same on both of `j`'s.
+#[inline(always)]
+pub(crate) fn spread_first(bits: u32) -> u32 {
+    ((bits & 1) * 0b0011) | ((bits >> 1) * 0b1100)
+}
+
+/// Bits `j` (of the other node's children) spread over the four outcomes,
+/// `2 i + j`: the same on both of `i`'s.
+#[inline(always)]
+pub(crate) fn spread_second(bits: u32) -> u32 {
+    bits * 0b0101
+}
+
 /// On SSE2 lanes: each node's references and visit sides are 16 bytes side
 /// by side, one load; two shuffles a node repeat its children as the four
 /// pairings need them (`[0, 0, 1, 1]` and `[0, 1, 0, 1]`), one mask of the
@@ -72,7 +86,7 @@ fn cross_words<B: Bound>(a: &Node<B>, b: &Node<B>) -> Cross {
     };
     let flags = |n: &Node<B>| (n.child[0].0 >> 31) | ((n.child[1].0 >> 31) << 1);
     let (fa, fb) = (flags(a), flags(b));
-    let leaves = (((fa & 1) * 0b0011) | ((fa >> 1) * 0b1100)) & (fb * 0b0101);
+    let leaves = spread_first(fa) & spread_second(fb);
     Cross {
         leaves,
         refs: crossed(words(a.child.map(|c| c.0)), words(b.child.map(|c| c.0))),

@@ -23,7 +23,7 @@ use std::cell::RefCell;
 
 use rayon::prelude::*;
 
-use crate::cross::{Cross, cross};
+use crate::cross::{Cross, cross, spread_first, spread_second};
 use crate::node::{BOTH, Node, Ref, SELECT};
 use crate::{Bound, BoundPair, Tree};
 
@@ -69,20 +69,6 @@ impl Visit {
     fn selected(side: u32) -> u32 {
         side >> SELECT
     }
-}
-
-/// Bits `i` (of one node's children) spread over the four outcomes of a
-/// visit, `2 i + j`: the same on both of `j`'s.
-#[inline(always)]
-fn spread_first(bits: u32) -> u32 {
-    ((bits & 1) * 0b0011) | ((bits >> 1) * 0b1100)
-}
-
-/// Bits `j` (of the other node's children) spread over the four outcomes,
-/// `2 i + j`: the same on both of `i`'s.
-#[inline(always)]
-fn spread_second(bits: u32) -> u32 {
-    bits * 0b0101
 }
 
 /// A pair search over one tree (`a` and `b` the same nodes, each pair found
