@@ -315,24 +315,24 @@ impl<T> Default for Buf<T> {
 }
 
 thread_local! {
-    /// A walker per thread kept from search to search: its frontiers and
-    /// output grow to a search's size once, instead of being allocated
-    /// afresh, their pages faulted in, at every search (with millions of
-    /// pairs a frame, a noticeable share of the search). Only one: the
-    /// walkers that nested splits make while it is out are dropped, so the
-    /// memory kept is one search's.
-    static SPARE: RefCell<Option<Walker>> = const { RefCell::new(None) };
+    /// The walkers of each thread kept from search to search: their
+    /// frontiers and output grow to a search's size once, instead of being
+    /// allocated afresh, their room filled and their pages faulted in, at
+    /// every search (with millions of pairs a frame, a noticeable share of
+    /// the search). One a depth of nesting: a split's halves, run while
+    /// their thread's walker is out, take the next, and keeping only one
+    /// kept whichever came back first, a half's, so that the chunk's
+    /// walker was made afresh at the next search.
+    static SPARE: RefCell<Vec<Walker>> = const { RefCell::new(Vec::new()) };
 }
 
-/// Runs `f` with this thread's spare walker, or a fresh one while that is
-/// out, and keeps one of them as the spare. A walker comes back with
+/// Runs `f` with one of this thread's spare walkers, or a fresh one when
+/// they are all out, and keeps it as a spare. A walker comes back with
 /// nothing pending.
 fn with_walker<R>(f: impl FnOnce(&mut Walker) -> R) -> R {
-    let mut walker = SPARE.with_borrow_mut(Option::take).unwrap_or_default();
+    let mut walker = SPARE.with_borrow_mut(Vec::pop).unwrap_or_default();
     let result = f(&mut walker);
-    SPARE.with_borrow_mut(|spare| {
-        spare.get_or_insert(walker);
-    });
+    SPARE.with_borrow_mut(|spare| spare.push(walker));
     result
 }
 
