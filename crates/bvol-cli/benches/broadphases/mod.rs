@@ -1,6 +1,6 @@
 //! The broadphases the pair benchmarks compare: bvol's tree (its pairs kept
-//! in a `PairCache`, copied out each frame; and, as `bvol-search`, searched
-//! afresh), a sweep-and-prune baseline, parry3d's `Bvh` (used as its authors
+//! in a `PairCache`, read where the cache keeps them; and, as `bvol-search`,
+//! searched afresh), a sweep-and-prune baseline, parry3d's `Bvh` (used as its authors
 //! advise: binned build, then per frame insert_or_update_partially,
 //! optimize_incremental, refit and traverse_bvtt_single_tree) and, for small
 //! N, brute force. Every one on one thread.
@@ -13,9 +13,11 @@ use parry3d::bounding_volume::Aabb as ParryAabb;
 use parry3d::math::Vector;
 use parry3d::partitioning::{Bvh, BvhBuildStrategy, BvhWorkspace};
 
-/// A broadphase: brought up to date with every box each frame, then all pairs.
+/// A broadphase: brought up to date with every box each frame, then all pairs,
+/// where the broadphase keeps them (as its users read them: a copy into a
+/// vector of the caller's would time a copy only some of them make).
 pub trait Broadphase {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>);
+    fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)];
 }
 
 /// bvol's dynamic tree, on one thread like the others (its builds and pair
@@ -24,19 +26,21 @@ pub trait Broadphase {
 struct BvolTree {
     tree: Option<Tree<Aabb>>,
     cache: Option<PairCache>,
+    /// The search's pairs, without a cache.
+    pairs: Vec<(u32, u32)>,
     one_thread: rayon::ThreadPool,
 }
 
 impl BvolTree {
     fn new(cache: bool) -> Self {
         let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        BvolTree { tree: None, cache: cache.then(PairCache::new), one_thread }
+        BvolTree { tree: None, cache: cache.then(PairCache::new), pairs: Vec::new(), one_thread }
     }
 }
 
 impl Broadphase for BvolTree {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
-        let (slot, cache) = (&mut self.tree, &mut self.cache);
+    fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)] {
+        let (slot, cache, pairs) = (&mut self.tree, &mut self.cache, &mut self.pairs);
         self.one_thread.install(|| {
             let tree = match slot {
                 Some(tree) => {
@@ -48,24 +52,27 @@ impl Broadphase for BvolTree {
             match cache {
                 Some(cache) => {
                     cache.update(tree);
-                    pairs.clear();
-                    pairs.extend_from_slice(cache.pairs());
                 }
                 None => {
                     tree.pairs_into(pairs);
                 }
             }
         });
+        match &self.cache {
+            Some(cache) => cache.pairs(),
+            None => &self.pairs,
+        }
     }
 }
 
 /// Sort and sweep on x (Baraff 1992), the order kept between frames so the
 /// sort starts nearly sorted.
 #[derive(Default)]
-struct SweepAndPrune(Vec<u32>);
+struct SweepAndPrune(Vec<u32>, Vec<(u32, u32)>);
 
 impl Broadphase for SweepAndPrune {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
+    fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)] {
+        let pairs = &mut self.1;
         if self.0.len() != boxes.len() {
             self.0 = (0..boxes.len() as u32).collect();
         }
@@ -83,19 +90,21 @@ impl Broadphase for SweepAndPrune {
                 }
             }
         }
+        pairs
     }
 }
 
 /// parry3d's `Bvh`, pairs filtered to the tight boxes.
 #[derive(Default)]
-struct Parry(Option<(Bvh, BvhWorkspace)>);
+struct Parry(Option<(Bvh, BvhWorkspace)>, Vec<(u32, u32)>);
 
 fn parry_aabb(b: &Aabb) -> ParryAabb {
     ParryAabb::new(Vector::new(b.min.x, b.min.y, b.min.z), Vector::new(b.max.x, b.max.y, b.max.z))
 }
 
 impl Broadphase for Parry {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
+    fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)] {
+        let pairs = &mut self.1;
         let (bvh, ws) = match &mut self.0 {
             Some((bvh, ws)) => {
                 for (i, b) in boxes.iter().enumerate() {
@@ -118,15 +127,17 @@ impl Broadphase for Parry {
                 pairs.push((a.min(b), a.max(b)));
             }
         });
+        pairs
     }
 }
 
 /// All pairs by testing every pair.
 #[derive(Default)]
-struct BruteForce;
+struct BruteForce(Vec<(u32, u32)>);
 
 impl Broadphase for BruteForce {
-    fn frame(&mut self, boxes: &[Aabb], pairs: &mut Vec<(u32, u32)>) {
+    fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)] {
+        let pairs = &mut self.0;
         pairs.clear();
         for a in 0..boxes.len() {
             for b in a + 1..boxes.len() {
@@ -135,6 +146,7 @@ impl Broadphase for BruteForce {
                 }
             }
         }
+        pairs
     }
 }
 
@@ -149,7 +161,7 @@ pub fn methods(n: usize) -> Vec<Method> {
         ("parry3d", || Box::new(Parry::default())),
     ];
     if n <= 20_000 {
-        out.push(("brute-force", || Box::new(BruteForce)));
+        out.push(("brute-force", || Box::<BruteForce>::default()));
     }
     out
 }
@@ -161,11 +173,9 @@ pub fn check_agreement(kind: SceneKind, n: usize) {
     let mut reference = None;
     for (name, make) in methods(n) {
         let mut method = make();
-        let mut pairs = Vec::new();
         let mut digest = PairDigest::default();
         for boxes in &frames {
-            method.frame(boxes, &mut pairs);
-            digest += PairDigest::of_pairs(pairs.iter().copied());
+            digest += PairDigest::of_pairs(method.frame(boxes).iter().copied());
         }
         match reference {
             None => reference = Some((name, digest)),
