@@ -5,7 +5,7 @@ use std::fmt::{self, Debug};
 use bvol_volumes::{Aabb, Ray, Sphere};
 use glam::{Vec3, Vec3A};
 
-use crate::{AabbPair, BoundPair};
+use crate::{AabbPair, BoundPair, PairRefit};
 
 /// Why a bound cannot go in a tree.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -116,6 +116,32 @@ impl<B: Bound> BoundPair<B> for [B; 2] {
     #[inline]
     fn overlaps(&self, other: &Self) -> u32 {
         (0..4).fold(0, |mask, k| mask | u32::from(self[k >> 1].overlaps(&other[k & 1])) << k)
+    }
+
+    #[inline]
+    fn refit(
+        &mut self,
+        children: [Option<&Self>; 2],
+        leaves: [Option<&B>; 2],
+        hold: bool,
+    ) -> PairRefit {
+        let mut found = PairRefit::default();
+        for side in 0..2 {
+            if let Some(child) = children[side] {
+                self[side] = child.merged();
+                found.cost += self[side].cost();
+            } else if let Some(&leaf) = leaves[side]
+                && leaf != self[side]
+            {
+                found.moved |= 1 << side;
+                let jumped = !leaf.overlaps(&self[side]);
+                found.jumped |= u32::from(jumped) << side;
+                if !(jumped && hold) {
+                    self[side] = leaf;
+                }
+            }
+        }
+        found
     }
 }
 

@@ -4,7 +4,7 @@
 use std::fmt::Debug;
 
 use bvol_volumes::Aabb;
-use glam::{Vec3, Vec4, Vec4Swizzles};
+use glam::{BVec4A, Vec2, Vec3, Vec4, Vec4Swizzles};
 
 /// Two bounds side by side (side 0 and side 1): how an internal node of a
 /// [`Tree`](crate::Tree) stores its children's bounds.
@@ -26,6 +26,31 @@ pub trait BoundPair<B>: Copy + Debug + Send + Sync + 'static {
     /// Which of the four pairs of this pair's and `other`'s bounds overlap:
     /// bit `2 i + j` for side `i` of `self` against side `j` of `other`.
     fn overlaps(&self, other: &Self) -> u32;
+    /// Refits the pair of one internal node (the tree's refit pass, children
+    /// before parents): side `s` takes the merge of `children[s]`, the pair
+    /// of an internal child, when given; else the leaf bound `leaves[s]`,
+    /// when given; else it keeps its bound. A leaf side whose bound changed
+    /// has moved; one whose new bound does not even overlap the old one has
+    /// jumped, and keeps the old one when `hold` (the tree reinserts it
+    /// after the refit).
+    fn refit(
+        &mut self,
+        children: [Option<&Self>; 2],
+        leaves: [Option<&B>; 2],
+        hold: bool,
+    ) -> PairRefit;
+}
+
+/// What [`BoundPair::refit`] found in one pair.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct PairRefit {
+    /// The leaf sides whose bound changed: bit `s` for side `s`.
+    pub moved: u32,
+    /// The moved sides whose new bound does not overlap the old one.
+    pub jumped: u32,
+    /// The summed cost ([`Bound::cost`](crate::Bound::cost)) of the sides
+    /// set from internal children.
+    pub cost: f64,
 }
 
 /// Two boxes stored axis by axis, the two side by side on each: lower x of
@@ -97,6 +122,110 @@ impl BoundPair<Aabb> for AabbPair {
         }
         hit.bitmask()
     }
+
+    /// On the lanes, with no box taken out of them: each side's source
+    /// spread over both sides, then the sides taken from theirs.
+    #[inline(always)]
+    fn refit(
+        &mut self,
+        children: [Option<&Self>; 2],
+        leaves: [Option<&Aabb>; 2],
+        hold: bool,
+    ) -> PairRefit {
+        let old = self.lanes;
+        let side = |s: usize| match (children[s], leaves[s]) {
+            (Some(child), _) => child.merged_both(),
+            (None, Some(leaf)) => AabbPair::both(leaf),
+            (None, None) => old,
+        };
+        let mut now = AabbPair::take_sides(1, side(0), side(1));
+        let internal = u32::from(children[0].is_some()) | u32::from(children[1].is_some()) << 1;
+        let moved = AabbPair::differs(now, old) & !internal;
+        let mut jumped = 0;
+        if moved != 0 {
+            jumped = moved & !AabbPair::overlap_sides(now, old);
+            if hold {
+                now = AabbPair::take_sides(jumped, old, now);
+            }
+        }
+        self.lanes = now;
+        let cost = match internal {
+            0 => 0.0,
+            _ => {
+                let [c0, c1] = self.costs();
+                let take = |s: u32, c: f64| if internal & s != 0 { c } else { 0.0 };
+                take(1, c0) + take(2, c1)
+            }
+        };
+        PairRefit { moved, jumped, cost }
+    }
+}
+
+impl AabbPair {
+    /// `bound` on both sides: its first four coordinates, and its last
+    /// four, each spread over two lanes.
+    #[inline(always)]
+    fn both(bound: &Aabb) -> [Vec4; 3] {
+        let (min, max) = (bound.min, bound.max);
+        let first = Vec4::new(min.x, min.y, min.z, max.x);
+        let last = Vec4::new(min.z, max.x, max.y, max.z);
+        [first.xxyy(), first.zzww(), last.zzww()]
+    }
+
+    /// The merge of both sides on both sides: each vector against itself
+    /// with the sides swapped, as in [`merged`](BoundPair::merged).
+    #[inline(always)]
+    fn merged_both(&self) -> [Vec4; 3] {
+        let [l0, l1, l2] = self.lanes;
+        let (mid_lo, mid_hi) = (l1.min(l1.yxwz()), l1.max(l1.yxwz()));
+        let lower_half = BVec4A::new(true, true, false, false);
+        [l0.min(l0.yxwz()), Vec4::select(lower_half, mid_lo, mid_hi), l2.max(l2.yxwz())]
+    }
+
+    /// The lanes of the sides in `sides` (bit `s` for side `s`) from
+    /// `from`, the others from `rest`. Side 0 is lanes 0 and 2 of every
+    /// vector, side 1 lanes 1 and 3.
+    #[inline(always)]
+    fn take_sides(sides: u32, from: [Vec4; 3], rest: [Vec4; 3]) -> [Vec4; 3] {
+        let (a, b) = (sides & 1 != 0, sides & 2 != 0);
+        let mask = BVec4A::new(a, b, a, b);
+        [0, 1, 2].map(|k| Vec4::select(mask, from[k], rest[k]))
+    }
+
+    /// Which sides of `a` hold other bounds than the same side of `b`: bit
+    /// `s` for side `s`.
+    #[inline(always)]
+    fn differs(a: [Vec4; 3], b: [Vec4; 3]) -> u32 {
+        let lanes = (a[0].cmpne(b[0]) | a[1].cmpne(b[1]) | a[2].cmpne(b[2])).bitmask();
+        u32::from(lanes & 0b0101 != 0) | u32::from(lanes & 0b1010 != 0) << 1
+    }
+
+    /// Which sides of `a` overlap the same side of `b`: bit `s` for side
+    /// `s`. Lower x and y against upper x and y on one vector each, lower z
+    /// against upper z on the lanes of side 0 and 1.
+    #[inline(always)]
+    fn overlap_sides(a: [Vec4; 3], b: [Vec4; 3]) -> u32 {
+        let hi_xy = |l: [Vec4; 3]| Vec4::new(l[1].z, l[1].w, l[2].x, l[2].y);
+        let z = |l: [Vec4; 3]| Vec4::new(l[1].x, l[1].y, l[2].z, l[2].w);
+        let xy = a[0].cmple(hi_xy(b)) & b[0].cmple(hi_xy(a));
+        let (za, zb) = (z(a), z(b));
+        let lanes = (xy.bitmask() & (xy.bitmask() >> 2))
+            & (za.cmple(zb.zwxy()).bitmask() & zb.cmple(za.zwxy()).bitmask());
+        lanes & 0b11
+    }
+
+    /// Both sides' costs, from their extents in f64 as [`Aabb`]'s cost
+    /// takes them.
+    #[inline(always)]
+    fn costs(&self) -> [f64; 2] {
+        let [l0, l1, l2] = self.lanes;
+        let extent = |hi: Vec2, lo: Vec2| hi.as_dvec2() - lo.as_dvec2();
+        let x = extent(l1.zw(), l0.xy());
+        let y = extent(l2.xy(), l0.zw());
+        let z = extent(l2.zw(), l1.xy());
+        let cost = 2.0 * (x * y + y * z + z * x);
+        [cost.x, cost.y]
+    }
 }
 
 impl Default for AabbPair {
@@ -134,6 +263,42 @@ mod tests {
             let mut changed = pair;
             changed.set(1, e);
             prop_assert_eq!(changed, AabbPair::new([a, e]));
+        }
+
+        /// The box pair's refit on lanes does what the boxes' own does
+        /// (`[Aabb; 2]`, the refit of any bound, side by side): the sides
+        /// it sets, the moves and jumps it finds, the cost to the bit. Each
+        /// side from an internal child's pair, a leaf's bound, or neither;
+        /// jumps held or not.
+        #[test]
+        fn box_pairs_refit_as_the_boxes_do(
+            old in (aabb(), aabb()),
+            children in (aabb(), aabb(), aabb(), aabb()),
+            leaves in (aabb(), aabb()),
+            kinds in (0..3u8, 0..3u8),
+            hold: bool,
+        ) {
+            let old = [old.0, old.1];
+            let children = [[children.0, children.1], [children.2, children.3]];
+            let leaves = [leaves.0, leaves.1];
+            let kinds = [kinds.0, kinds.1];
+            let child = |s: usize| (kinds[s] == 0).then_some(s);
+            let leaf = |s: usize| (kinds[s] == 1).then_some(&leaves[s]);
+            let mut boxes = old;
+            let lanes_children = children.map(AabbPair::new);
+            let expected = boxes.refit(
+                [child(0).map(|s| &children[s]), child(1).map(|s| &children[s])],
+                [leaf(0), leaf(1)],
+                hold,
+            );
+            let mut lanes = AabbPair::new(old);
+            let found = lanes.refit(
+                [child(0).map(|s| &lanes_children[s]), child(1).map(|s| &lanes_children[s])],
+                [leaf(0), leaf(1)],
+                hold,
+            );
+            prop_assert_eq!(found, expected);
+            prop_assert_eq!([lanes.get(0), lanes.get(1)], boxes);
         }
     }
 

@@ -77,7 +77,7 @@ mod upkeep;
 mod validate;
 
 pub use bound::{Bound, BoundError};
-pub use bound_pair::{AabbPair, BoundPair};
+pub use bound_pair::{AabbPair, BoundPair, PairRefit};
 pub use config::Config;
 pub use error::{TreeError, Violation};
 pub use node::Slot;

@@ -151,10 +151,10 @@ impl<B: Bound> Node<B> {
         self.pair.set(side, bound);
     }
 
-    /// Sets the bounds of both children.
+    /// The children's bounds, to be refit ([`BoundPair::refit`]).
     #[inline]
-    pub(crate) fn set_bounds(&mut self, bounds: [B; 2]) {
-        self.pair = B::Pair::new(bounds);
+    pub(crate) fn pair_mut(&mut self) -> &mut B::Pair {
+        &mut self.pair
     }
 
     /// The children's bounds together, as the pair search tests them.

@@ -8,7 +8,7 @@ use bvol_volumes::prefetch;
 
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, SETTLED, WALK_LATE};
-use crate::{Bound, Tree};
+use crate::{Bound, BoundPair, Tree};
 
 impl<B: Bound> Tree<B> {
     /// Sets leaf bounds from `bounds` (when given), recording in `moved` the
@@ -229,11 +229,12 @@ impl<B: Bound> Tree<B> {
                 ask_leaf_bounds(&nodes[ahead as usize], all);
             }
             let x = order[k];
-            let child = |c: Ref| c.is_node().then(|| nodes[c.index() as usize].merged());
+            let child = |c: Ref| c.is_node().then(|| *nodes[c.index() as usize].pair());
             let [c0, c1] = nodes[x as usize].child;
             let before = |c: Ref| c.is_node() & (c.index() < x);
             late += usize::from(before(c0) | before(c1));
-            let children = [child(c0), child(c1)];
+            let pairs = [child(c0), child(c1)];
+            let children = [pairs[0].as_ref(), pairs[1].as_ref()];
             // In place: a copy on the stack, written back, would make
             // the refit's speed depend on where the stack falls against
             // the arrays modulo 4 KiB (its stores can alias the next
@@ -244,9 +245,11 @@ impl<B: Bound> Tree<B> {
         late
     }
 
-    /// Gives the leaves `listed` their new bounds for a refit to follow:
-    /// those that jumped clear of their old bound keep it when `hold`
-    /// (see [`place_leaf`]). Returns the ones that jumped.
+    /// Gives the leaves `listed` their new bounds for a refit to follow
+    /// ([`BoundPair::refit`]): those that jumped clear of their old bound
+    /// keep it when `hold` (see [`crate::policy`]), to be reinserted after
+    /// the refit, which so measures the cost without their stretch. Returns
+    /// the ones that jumped.
     pub(crate) fn place_listed(&mut self, listed: &[(u32, B)], hold: bool) -> Vec<(u32, B)> {
         let mut jumped = Vec::new();
         for (k, &(id, bound)) in listed.iter().enumerate() {
@@ -261,12 +264,11 @@ impl<B: Bound> Tree<B> {
                 continue;
             }
             let node = &mut self.nodes[p as usize];
-            let side = node.side_of(Ref::leaf(id));
-            let mut old = node.bound(side);
-            if place_leaf(&mut old, bound, hold) {
+            let mut leaves = [None; 2];
+            leaves[node.side_of(Ref::leaf(id))] = Some(&bound);
+            if node.pair_mut().refit([None; 2], leaves, hold).jumped != 0 {
                 jumped.push((id, bound));
             }
-            node.set_bound(side, old);
         }
         jumped
     }
@@ -341,7 +343,7 @@ fn refit_subtree<B: Bound>(
     let [c0, c1] = node.child;
     found.join(|p| part(first_nodes, c0, p), |p| part(second_nodes, c1, p));
     // A child subtree's root is its run's first node.
-    let children = [first_nodes.first().map(Node::merged), second_nodes.first().map(Node::merged)];
+    let children = [first_nodes.first().map(Node::pair), second_nodes.first().map(Node::pair)];
     found.inner += refit_node(node, children, bounds, found);
 }
 
@@ -360,7 +362,7 @@ fn refit_run<B: Bound>(
         let child = |side: usize| {
             let c = node.child[side];
             // Preorder: every child comes after its parent.
-            c.is_node().then(|| tail[c.index() as usize - base - x - 1].merged())
+            c.is_node().then(|| tail[c.index() as usize - base - x - 1].pair())
         };
         let children = [child(0), child(1)];
         inner += refit_node(node, children, bounds, found);
@@ -409,11 +411,10 @@ fn refit_block<B: Bound>(
         if !(ready(node.child[0]) && ready(node.child[1])) {
             late.push(x as u32);
         }
-        let child = |side: usize| {
-            let c = node.child[side];
-            c.is_node().then(|| refit(c).map_or(node.bound(side), Node::merged))
-        };
-        let children = [child(0), child(1)];
+        // An internal child not refit yet is given as neither: its side
+        // keeps its bound.
+        let child = |side: usize| refit(node.child[side]).filter(|_| node.child[side].is_node());
+        let children = [child(0).map(Node::pair), child(1).map(Node::pair)];
         inner += refit_node(node, children, bounds, found);
     }
     found.inner += inner;
@@ -448,50 +449,31 @@ fn ask_leaf_bounds<B: Bound>(node: &Node<B>, all: &[B]) {
     }
 }
 
-/// Gives a leaf stored with bound `old` its `new` one, unless it jumped
-/// clear of the old while jumps are held (see [`crate::policy`]):
-/// then it keeps the old for now, to be reinserted after the refit, which so
-/// measures the cost without its stretch. Returns whether it jumped.
-#[inline]
-fn place_leaf<B: Bound>(old: &mut B, new: B, hold: bool) -> bool {
-    let jumped = !new.overlaps(old);
-    if !(jumped && hold) {
-        *old = new;
-    }
-    jumped
-}
-
-/// Sets one node's child bounds: internal children's from their refit
-/// `children`, leaves' from `bounds` (recording moves and jumps). Returns
-/// the internal children's summed area, for the caller to add up in a
-/// register (added to `found` a node at a time, it chained every node's
-/// refit on a store and a load).
-#[inline]
+/// Refits one node's child bounds ([`BoundPair::refit`]): internal
+/// children's from their refit pairs `children`, leaves' from `bounds`,
+/// recording moves and jumps. Returns the internal children's summed area,
+/// for the caller to add up in a register (added to `found` a node at a
+/// time, it chained every node's refit on a store and a load).
+#[inline(always)]
 fn refit_node<B: Bound>(
     node: &mut Node<B>,
-    children: [Option<B>; 2],
+    children: [Option<&B::Pair>; 2],
     bounds: Option<&[B]>,
     found: &mut Refit,
 ) -> f64 {
-    let mut inner = 0.0;
-    let mut now = node.bounds();
-    for (side, child) in children.into_iter().enumerate() {
-        let c = node.child[side];
-        if let Some(b) = child {
-            inner += b.cost();
-            now[side] = b;
-        } else if let Some(&b) = bounds.and_then(|all| all.get(c.index() as usize)) {
-            let old = &mut now[side];
-            if b != *old {
-                found.moved.push(c.index());
-                if place_leaf(old, b, found.hold) {
-                    found.jumped.push(c.index());
-                }
+    let child = node.child;
+    let leaf = |c: Ref| bounds.filter(|_| c.is_leaf()).and_then(|all| all.get(c.index() as usize));
+    let refit = node.pair_mut().refit(children, [leaf(child[0]), leaf(child[1])], found.hold);
+    if refit.moved != 0 {
+        for side in (0..2).filter(|s| refit.moved >> s & 1 == 1) {
+            let id = child[side].index();
+            found.moved.push(id);
+            if refit.jumped >> side & 1 == 1 {
+                found.jumped.push(id);
             }
         }
     }
-    node.set_bounds(now);
-    inner
+    refit.cost
 }
 
 #[cfg(test)]
