@@ -413,8 +413,8 @@ fn refit_block<B: Bound>(
         }
         // An internal child not refit yet is given as neither: its side
         // keeps its bound.
-        let child = |side: usize| refit(node.child[side]).filter(|_| node.child[side].is_node());
-        let children = [child(0).map(Node::pair), child(1).map(Node::pair)];
+        let child = |c: Ref| if c.is_node() { refit(c).map(Node::pair) } else { None };
+        let children = [child(node.child[0]), child(node.child[1])];
         inner += refit_node(node, children, bounds, found);
     }
     found.inner += inner;

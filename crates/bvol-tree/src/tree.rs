@@ -528,12 +528,13 @@ impl<B: Bound> Tree<B> {
     }
 
     /// A node from `spare` (free nodes; a new one if none) for children
-    /// `child` of bounds `bounds`, to be linked in at `slot`: the first after its parent, or the last when
-    /// none is. A refit over the node array from last to first
-    /// ([`Tree::refit_pass`]) meets a node so placed after its children
-    /// whenever a free node allows (the first after the parent comes before
-    /// an internal child too if any does), where the free list's first
-    /// would come before a child of its for most insertions.
+    /// `child` of bounds `bounds`, to be linked in at `slot`: the first
+    /// after its parent, or the last when none is. A refit over the node
+    /// array from last to first ([`Tree::refit_pass`]) meets a node so
+    /// placed after its children whenever a free node allows (the first
+    /// after the parent comes before an internal child too if any does),
+    /// where the free list's first would come before a child of its for
+    /// most insertions.
     fn alloc_node_among(
         &mut self,
         bounds: [B; 2],
