@@ -156,8 +156,13 @@ impl<B: Bound> Tree<B> {
             if let Some(top) = top {
                 chunks[..=top].rotate_right(1);
             }
+            // A task a chunk: by default rayon cuts the list into a few
+            // runs, and a thread that has begun a run goes through it
+            // alone, so that one thread was left with several long chunks
+            // while the others had finished.
             let (mut parts, visits): (Vec<Parts>, Vec<u64>) = chunks
                 .par_iter()
+                .with_max_len(1)
                 .map(|&start| {
                     with_walker(|walker| {
                         walker.siblings(&search, range(start));
@@ -207,6 +212,7 @@ impl<B: Bound> Tree<B> {
         });
         let parts: Vec<Parts> = visits
             .par_chunks(TASKS / 64)
+            .with_max_len(1)
             .map(|visits| {
                 with_walker(|walker| {
                     walker.run(&search, visits);
@@ -256,7 +262,7 @@ fn concat(parts: Parts, out: &mut Vec<(u32, u32)>, f: impl Fn((u32, u32)) -> (u3
         stretches.push(stretch);
         rest = tail;
     }
-    stretches.into_par_iter().zip(&parts).for_each(|(stretch, part)| {
+    stretches.into_par_iter().zip(&parts).with_max_len(1).for_each(|(stretch, part)| {
         stretch.iter_mut().zip(part).for_each(|(to, &pair)| *to = f(pair));
     });
 }
