@@ -20,28 +20,29 @@ pub trait Broadphase {
     fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)];
 }
 
-/// bvol's dynamic tree, on one thread like the others (its builds and pair
-/// search would otherwise use rayon's global pool), its pairs kept in a
+/// bvol's dynamic tree on a pool of its own (its builds and pair search
+/// would otherwise use rayon's global pool): one thread like the others,
+/// unless a benchmark of threads asks for more. Its pairs are kept in a
 /// `PairCache` (`cache`) or searched afresh each frame.
-struct BvolTree {
+pub struct BvolTree {
     tree: Option<Tree<Aabb>>,
     cache: Option<PairCache>,
     /// The search's pairs, without a cache.
     pairs: Vec<(u32, u32)>,
-    one_thread: rayon::ThreadPool,
+    pool: rayon::ThreadPool,
 }
 
 impl BvolTree {
-    fn new(cache: bool) -> Self {
-        let one_thread = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-        BvolTree { tree: None, cache: cache.then(PairCache::new), pairs: Vec::new(), one_thread }
+    pub fn new(cache: bool, threads: usize) -> Self {
+        let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+        BvolTree { tree: None, cache: cache.then(PairCache::new), pairs: Vec::new(), pool }
     }
 }
 
 impl Broadphase for BvolTree {
     fn frame(&mut self, boxes: &[Aabb]) -> &[(u32, u32)] {
         let (slot, cache, pairs) = (&mut self.tree, &mut self.cache, &mut self.pairs);
-        self.one_thread.install(|| {
+        self.pool.install(|| {
             let tree = match slot {
                 Some(tree) => {
                     tree.update(boxes).expect("valid boxes");
@@ -155,8 +156,8 @@ pub type Method = (&'static str, fn() -> Box<dyn Broadphase>);
 
 pub fn methods(n: usize) -> Vec<Method> {
     let mut out: Vec<Method> = vec![
-        ("bvol", || Box::new(BvolTree::new(true))),
-        ("bvol-search", || Box::new(BvolTree::new(false))),
+        ("bvol", || Box::new(BvolTree::new(true, 1))),
+        ("bvol-search", || Box::new(BvolTree::new(false, 1))),
         ("sweep-and-prune", || Box::new(SweepAndPrune::default())),
         ("parry3d", || Box::new(Parry::default())),
     ];
