@@ -1,8 +1,10 @@
 //! The per-leaf kernels of an update: finding which leaves moved, moving
 //! them one by one, and reinserting those that jumped clear of their bound.
 
-use crate::node::{NONE, Ref};
-use crate::tuning::REMOVE_AHEAD;
+use rayon::prelude::*;
+
+use crate::node::{NONE, Ref, Slot};
+use crate::tuning::{REMOVE_AHEAD, SIBLINGS_A_TASK};
 use crate::update::UpdateStats;
 use crate::{Bound, Move, Tree};
 
@@ -90,15 +92,38 @@ impl<B: Bound> Tree<B> {
         if out.is_empty() {
             return;
         }
+        if self.root == Ref::NONE {
+            // An emptied tree (a handful of leaves, all taken out) is
+            // refilled one by one, each placed among those before it.
+            for &(id, bound) in &out {
+                self.insert_leaf(id, bound, &bound);
+            }
+        } else {
+            self.insert_all(&out);
+        }
+        stats.reinserted += out.len();
+    }
+
+    /// Inserts the leaves `out` (with their bounds) into a tree that is not
+    /// empty. Where each goes is looked for on rayon tasks, in the tree
+    /// without any of them: a leaf's search reads only the tree, and it
+    /// would otherwise run on one thread while the others wait. A slot
+    /// another took first still holds (the new node there covers what it
+    /// held), so the tree is valid, and the same on any number of threads.
+    fn insert_all(&mut self, out: &[(u32, B)]) {
+        let slots: Vec<Slot> = out
+            .par_iter()
+            .with_min_len(SIBLINGS_A_TASK)
+            .map(|(_, bound)| self.find_best_sibling(bound))
+            .collect();
         // The new nodes take the free ones in an order that a refit over
         // the node array meets children first ([`Tree::alloc_node_among`]).
         let mut spare = self.take_free();
-        for &(id, bound) in &out {
-            self.insert_leaf_among(id, bound, &bound, Some(&mut spare));
+        for (&(id, bound), slot) in out.iter().zip(slots) {
+            self.insert_leaf_at(id, bound, &bound, slot, Some(&mut spare));
         }
         for &x in spare.iter().rev() {
             self.free_node(x);
         }
-        stats.reinserted += out.len();
     }
 }

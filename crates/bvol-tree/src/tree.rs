@@ -282,26 +282,29 @@ impl<B: Bound> Tree<B> {
 
     /// Links leaf `id` (tight `bound`, fat `fat`) in next to the best sibling.
     pub(crate) fn insert_leaf(&mut self, id: u32, bound: B, fat: &B) {
-        self.insert_leaf_among(id, bound, fat, None);
-    }
-
-    /// [`Tree::insert_leaf`], the new internal node taken from `spare` (free
-    /// nodes) when given: see [`Tree::alloc_node_among`].
-    pub(crate) fn insert_leaf_among(
-        &mut self,
-        id: u32,
-        bound: B,
-        fat: &B,
-        spare: Option<&mut BTreeSet<u32>>,
-    ) {
-        let leaf = Ref::leaf(id);
         if self.root == Ref::NONE {
-            self.root = leaf;
+            self.root = Ref::leaf(id);
             self.root_bound = bound;
             self.leaf_parents[id as usize] = ROOT;
             return;
         }
         let slot = self.find_best_sibling(fat);
+        self.insert_leaf_at(id, bound, fat, slot, None);
+    }
+
+    /// Links leaf `id` (tight `bound`, fat `fat`) into a tree that is not
+    /// empty, next to the node or leaf in `slot`: a new internal node takes
+    /// the slot, from `spare` (free nodes) when given, see
+    /// [`Tree::alloc_node_among`].
+    pub(crate) fn insert_leaf_at(
+        &mut self,
+        id: u32,
+        bound: B,
+        fat: &B,
+        slot: Slot,
+        spare: Option<&mut BTreeSet<u32>>,
+    ) {
+        let leaf = Ref::leaf(id);
         let (sibling, sibling_bound) = (self.get_ref(slot), self.get(slot));
         let (bounds, child) = ([sibling_bound, bound], [sibling, leaf]);
         let p = match spare {
@@ -398,7 +401,7 @@ impl<B: Bound> Tree<B> {
     /// one whose new parent adds the least surface area to the tree, found by
     /// a greedy descent pruned with a lower bound on the cost below each child
     /// (Box2D v3 `b2FindBestSibling`, after Bittner et al. 2012).
-    fn find_best_sibling(&self, d: &B) -> Slot {
+    pub(crate) fn find_best_sibling(&self, d: &B) -> Slot {
         let (area_d, center_d) = (d.cost(), d.center());
         let mut base_area = self.root_bound.cost();
         let mut direct = self.root_bound.merge(d).cost();

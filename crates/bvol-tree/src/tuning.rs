@@ -48,6 +48,12 @@ pub(crate) const PREFETCH_AHEAD: usize = 16;
 /// removals' time is enough for the node to arrive.
 pub(crate) const REMOVE_AHEAD: usize = 4;
 
+/// Reinserted leaves a rayon task looks up the slots of, at least: a lookup
+/// is one descent from the root, under a microsecond (the teleport scene's
+/// thousand a frame take about 0.7 ms), and a task costs about as much as a
+/// few.
+pub(crate) const SIBLINGS_A_TASK: usize = 32;
+
 /// How many nodes ahead the refit asks for the node it will refit: the
 /// nodes are walked backwards, and past the caches (a million leaves) the
 /// refit would otherwise wait on each; within them the request costs

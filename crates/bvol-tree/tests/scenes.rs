@@ -323,6 +323,23 @@ fn a_trickle_of_teleports_is_rebuilt_over_three_frames() {
     assert!(run(2).lists == one.lists, "the order depends on the thread count");
 }
 
+/// A burst of teleports, 80 boxes in 3 000 a frame (fewer than mass
+/// motion): the slots of the reinserted leaves are looked up on several
+/// rayon tasks, all in the tree as it stood after their removal, and the
+/// tree comes out the same on any number of threads, every frame exact and
+/// the tree's cost near a fresh build's.
+#[test]
+fn a_burst_of_reinsertions_does_not_depend_on_the_thread_count() {
+    let run = |threads| staged_run(threads, 30, |scene, _| glide(scene, 80));
+    let one = run(1);
+    assert!(one.worst_frame < 2.0, "drifted to {} times a fresh build's cost", one.worst_frame);
+    for threads in [2, 3] {
+        let other = run(threads);
+        assert!(other.lists == one.lists, "{threads} threads: the order differs");
+        assert_eq!(other.tree.sah_cost(), one.tree.sah_cost(), "{threads} threads: another tree");
+    }
+}
+
 /// A staged rebuild over many leaves, whose top build is split across rayon
 /// tasks (above 4 096 nodes), installs the same tree on any number of
 /// threads: the same pairs in the same order and the same cost, every
