@@ -295,6 +295,18 @@ impl Refit<'_> {
         first: impl FnOnce(&mut Refit) -> R + Send,
         second: impl FnOnce(&mut Refit) -> R + Send,
     ) -> (R, R) {
+        if rayon::current_num_threads() == 1 {
+            // On one thread each appends to these lists, in the order the
+            // join gives them (second's first), instead of filling lists of
+            // its own that are copied in at every level of the split; its
+            // area is summed on its own and added as the join adds it, so
+            // the cost is the same to the bit.
+            let (b_inner, b) = self.along(second);
+            let (a_inner, a) = self.along(first);
+            self.inner += b_inner;
+            self.inner += a_inner;
+            return (a, b);
+        }
         let hold = self.hold;
         let (a, b) = rayon::join(|| Refit::apart(hold, first), || Refit::apart(hold, second));
         for (moved, jumped, inner, _) in [&b, &a] {
@@ -303,6 +315,15 @@ impl Refit<'_> {
             self.inner += inner;
         }
         (a.3, b.3)
+    }
+
+    /// Runs `run` on a refit that appends to these lists but sums its own
+    /// area: that area, and what it returned.
+    fn along<R>(&mut self, run: impl FnOnce(&mut Refit) -> R) -> (f64, R) {
+        let (moved, jumped) = (&mut *self.moved, &mut *self.jumped);
+        let mut part = Refit { moved, jumped, hold: self.hold, inner: 0.0 };
+        let result = run(&mut part);
+        (part.inner, result)
     }
 
     /// Runs `run` on a refit of its own: what it found, and what it returned.
@@ -517,6 +538,54 @@ mod tests {
         assert!(tree.update(&boxes).unwrap().refit);
         assert!(out_of_order(&tree));
         assert_exact(&tree, &boxes);
+    }
+
+    /// A refit pass on one thread, whose halves append to the caller's lists
+    /// in turn, finds what the pass on two finds, where the halves' lists
+    /// are joined: the same moved and jumped ids in the same order, the
+    /// same cost to the bit, in preorder (split into subtrees) and out of
+    /// it (split into blocks), jumps held or not.
+    #[test]
+    fn a_refit_pass_finds_the_same_on_one_thread_and_two() {
+        let n = 4 * PARALLEL_REFIT;
+        let boxes: Vec<Aabb> =
+            (0..n).map(|i| cube((i % 200) as f32 * 1.5, (i / 200) as f32 * 1.5)).collect();
+        let mut moved_boxes = boxes.clone();
+        for (i, b) in moved_boxes.iter_mut().enumerate() {
+            // Most drift a little (their ancestors' areas change by varied
+            // amounts); one in 97 jumps clear of where it was.
+            *b = match i % 97 {
+                0 => cube(-2.0 * (i % 50) as f32, -5.0),
+                k => Aabb::new(b.min + 0.003 * k as f32, b.max + 0.01),
+            };
+        }
+        let preorder = Tree::from_bounds(&boxes).unwrap();
+        let mut reshaped = preorder.clone();
+        for id in [7, 300, 5120, 9999, 41, 26500, 128, 18000] {
+            reshaped.set_bound(id, cube(-3.0 * id as f32, -4.0)).unwrap();
+        }
+        assert!(out_of_order(&reshaped));
+        for (tree, hold) in [(&preorder, false), (&preorder, true), (&reshaped, true)] {
+            let pass = |threads: usize| {
+                let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+                pool.install(|| {
+                    let mut tree = tree.clone();
+                    let (mut moved, mut jumped) = (Vec::new(), Vec::new());
+                    let mut found =
+                        Refit { moved: &mut moved, jumped: &mut jumped, hold, inner: 0.0 };
+                    match tree.preorder {
+                        true => refit_subtree(&mut tree.nodes, 0, Some(&moved_boxes), &mut found),
+                        false => {
+                            tree.refit_blocks(Some(&moved_boxes), &mut found);
+                        }
+                    }
+                    (found.inner.to_bits(), moved, jumped)
+                })
+            };
+            let one = pass(1);
+            assert!(one.1.len() > n / 2 && !one.2.is_empty());
+            assert_eq!(pass(2), one, "hold {hold}, preorder {}", tree.preorder);
+        }
     }
 
     /// Every node's bounds are the exact merge of its children's, and the
