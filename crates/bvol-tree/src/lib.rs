@@ -87,3 +87,10 @@ pub use pairs::SearchStats;
 pub use sort_pairs::sort_pairs;
 pub use tree::{Move, Tree};
 pub use update::UpdateStats;
+
+/// Whether the work runs on one thread (the rayon pool it runs in has one):
+/// the pair search and the refit then skip the parts and lists that tasks'
+/// results are joined from, and give the same result.
+fn one_thread() -> bool {
+    rayon::current_num_threads() == 1
+}

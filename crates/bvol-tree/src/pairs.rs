@@ -25,7 +25,7 @@ use rayon::prelude::*;
 
 use crate::cross::{Cross, cross, spread_first, spread_second};
 use crate::node::{BOTH, Node, Ref, SELECT};
-use crate::{Bound, BoundPair, Tree};
+use crate::{Bound, BoundPair, Tree, one_thread};
 
 /// Internal nodes per task of a one-tree search: small enough for work
 /// stealing to balance 16+ threads, large enough that per-task overhead is
@@ -240,11 +240,6 @@ impl<B: Bound> Tree<B> {
         concat(all, &mut out, ids);
         out
     }
-}
-
-/// Whether the search runs on one thread (see the module docs).
-fn one_thread() -> bool {
-    rayon::current_num_threads() == 1
 }
 
 /// The search files a pair as it meets it, two leaves' references; one

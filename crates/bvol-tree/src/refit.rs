@@ -8,7 +8,7 @@ use bvol_volumes::prefetch;
 
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, SETTLED, WALK_LATE};
-use crate::{Bound, BoundPair, Tree};
+use crate::{Bound, BoundPair, Tree, one_thread};
 
 impl<B: Bound> Tree<B> {
     /// Sets leaf bounds from `bounds` (when given), recording in `moved` the
@@ -295,7 +295,7 @@ impl Refit<'_> {
         first: impl FnOnce(&mut Refit) -> R + Send,
         second: impl FnOnce(&mut Refit) -> R + Send,
     ) -> (R, R) {
-        if rayon::current_num_threads() == 1 {
+        if one_thread() {
             // On one thread each appends to these lists, in the order the
             // join gives them (second's first), instead of filling lists of
             // its own that are copied in at every level of the split; its
