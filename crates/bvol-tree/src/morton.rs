@@ -1,19 +1,42 @@
 //! Whole-tree builds in near-linear time: leaves sorted along a Morton
-//! (Z-order) curve by radix sort, cut at Morton bit boundaries into clusters
-//! of at most 16, and the clusters joined by binned SAH: HLBVH (Pantaleoni &
+//! (Z-order) curve by radix sort, cut at Morton bit boundaries into
+//! clusters, and the clusters joined by binned SAH: HLBVH (Pantaleoni &
 //! Luebke 2010; Garanzha, Pantaleoni & McAllister 2011). SAH decides the top
-//! levels, where a poor split costs a pair search the most; the sort decides
-//! the bottom ones. No level bins all n leaves, so the build is the radix
-//! sort's O(n) plus an SAH build over n/8 clusters.
+//! levels, where a poor split costs a pair search the most. Inside the
+//! clusters ([`Clusters`]) either the sort decides too, splitting at Morton
+//! bit boundaries, or binned SAH over the leaves' bounds does, in twice the
+//! build's time, for a tree whose pair searches visit fewer node pairs.
 
 use glam::Vec3;
 
 use crate::Bound;
-use crate::build::{Atom, Expand, build};
+use crate::build::{Atom, Expand, NoClusters, build};
 use crate::node::{NodeOut, Ref};
 
-/// Clusters hold at most this many leaves.
-const CLUSTER: usize = 16;
+/// How a build finishes the clusters its Morton order is cut into.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Clusters {
+    /// At most 16 leaves each, split at Morton bit boundaries (LBVH): the
+    /// build in least time, for a rebuild in one go under mass motion,
+    /// whose tree the next frames' motion spoils.
+    ByCode,
+    /// At most 256 leaves each, built by binned SAH over their bounds: about
+    /// twice the build's time, and a tree whose pair search visits up to a
+    /// sixth fewer node pairs (docs/performance.md); for loads, and the
+    /// staged rebuilds of a tree that drifts.
+    BySah,
+}
+
+impl Clusters {
+    /// The most leaves a cluster holds.
+    pub(crate) fn most(self) -> usize {
+        match self {
+            Clusters::ByCode => 16,
+            Clusters::BySah => 256,
+        }
+    }
+}
+
 /// Leaves whose area is at least 2^(this + 1) times the median's are kept
 /// out of the clusters.
 pub(crate) const LARGE_CLASSES: u8 = 4;
@@ -23,9 +46,14 @@ const BITS: u32 = 10;
 const LAST_CELL: f32 = ((1 << BITS) - 1) as f32;
 
 /// Builds a tree over `leaves` (at least 2, weight 1 each) into `out`, which
-/// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root. Returns
-/// the root's bound. `leaves` is left reordered.
-pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(leaves: &mut Vec<Atom<B>>, out: &mut [N]) -> B {
+/// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root, the
+/// clusters finished as `finish` says. Returns the root's bound. `leaves`
+/// is left reordered.
+pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(
+    leaves: &mut Vec<Atom<B>>,
+    out: &mut [N],
+    finish: Clusters,
+) -> B {
     // Leaves far larger than the typical one stay out of the clusters: a
     // cluster holding one would be as large, and so would every node above
     // it, and a pair search would visit them all. The top-level SAH places
@@ -39,9 +67,9 @@ pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(leaves: &mut Vec<Atom<B>>, o
         leaves.retain(|a| !is_large(a));
     }
     let codes = sort(leaves);
-    let mut clusters = Vec::with_capacity(leaves.len() / (CLUSTER / 2) + 1);
+    let mut clusters = Vec::with_capacity(leaves.len() / (finish.most() / 2) + 1);
     if !leaves.is_empty() {
-        cut(&codes, 0, leaves.len(), &mut clusters);
+        cut(&codes, 0, leaves.len(), finish.most(), &mut clusters);
     }
     atoms.extend(clusters.iter().map(|&(start, end)| {
         if end - start == 1 {
@@ -52,7 +80,7 @@ pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(leaves: &mut Vec<Atom<B>>, o
         // A cluster is named by the position of its first leaf.
         Atom::weighted(Ref(start as u32), bound, (end - start) as u32)
     }));
-    let sorted = Sorted { leaves, codes: &codes };
+    let sorted = Sorted { leaves, codes: &codes, finish };
     build(&mut atoms, out, 0, &sorted).1
 }
 
@@ -79,17 +107,24 @@ pub(crate) fn median_of(counts: &[usize; 256]) -> u8 {
 }
 
 /// Leaves in Morton order with their codes: expands a cluster atom (named by
-/// its first leaf's position) into a subtree split at Morton bit boundaries.
+/// its first leaf's position) into a subtree, as `finish` says.
 struct Sorted<'a, B: Bound> {
     leaves: &'a [Atom<B>],
     codes: &'a [u32],
+    finish: Clusters,
 }
 
 impl<B: Bound> Expand<B> for Sorted<'_, B> {
     fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, out: &mut [N], base: u32) -> (Ref, B) {
         let range = atom.r.0 as usize..atom.r.0 as usize + atom.weight as usize;
-        let b = lbvh(&self.leaves[range.clone()], &self.codes[range], out, base);
-        (Ref::node(base), b)
+        match self.finish {
+            Clusters::ByCode => {
+                (Ref::node(base), lbvh(&self.leaves[range.clone()], &self.codes[range], out, base))
+            }
+            // The build partitions its atoms in place: a copy of the
+            // cluster's, which other tasks' clusters lie beside.
+            Clusters::BySah => build(&mut self.leaves[range].to_vec(), out, base, &NoClusters),
+        }
     }
 }
 
@@ -106,15 +141,21 @@ fn morton_split(codes: &[u32], start: usize, end: usize) -> usize {
 }
 
 /// Cuts the sorted range `start..end` at Morton bit boundaries until every
-/// piece has at most [`CLUSTER`] leaves, appending the pieces in order.
-pub(crate) fn cut(codes: &[u32], start: usize, end: usize, clusters: &mut Vec<(usize, usize)>) {
-    if end - start <= CLUSTER {
+/// piece has at most `most` leaves, appending the pieces in order.
+pub(crate) fn cut(
+    codes: &[u32],
+    start: usize,
+    end: usize,
+    most: usize,
+    clusters: &mut Vec<(usize, usize)>,
+) {
+    if end - start <= most {
         clusters.push((start, end));
         return;
     }
     let mid = start + morton_split(codes, start, end);
-    cut(codes, start, mid, clusters);
-    cut(codes, mid, end, clusters);
+    cut(codes, start, mid, most, clusters);
+    cut(codes, mid, end, most, clusters);
 }
 
 /// Sorts `leaves` by the Morton code of their centres (in the [`Grid`] over

@@ -6,6 +6,7 @@
 //! ([`crate::refit`], [`crate::moves`]).
 
 use crate::error::TreeError;
+use crate::morton::Clusters;
 use crate::policy::{Install, Next};
 use crate::update::UpdateStats;
 use crate::{Bound, Tree};
@@ -83,7 +84,7 @@ impl<B: Bound> Tree<B> {
     fn install_finished(&mut self) -> Option<Install> {
         let mut install = self.policy.finish(self.len)?;
         match &mut install {
-            Install::Rebuild => self.rebuild(),
+            Install::Rebuild => self.rebuild_with(Clusters::ByCode),
             Install::Topology { topology, .. } => self.install_topology(&std::mem::take(topology)),
         }
         Some(install)
@@ -154,7 +155,7 @@ impl<B: Bound> Tree<B> {
                 // Mass motion: the jumps took their new bounds above, and
                 // the leaves that moved are marked; the new topology moves
                 // none, as an installed rebuild's does not.
-                self.rebuild();
+                self.rebuild_with(Clusters::ByCode);
                 stats.rebuilt = self.len;
             }
         }

@@ -6,7 +6,7 @@ use rayon::prelude::*;
 use crate::build::Atom;
 use crate::check::{check_bound, check_id};
 use crate::error::TreeError;
-use crate::morton::build_morton;
+use crate::morton::{Clusters, build_morton};
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{PASS_RUN, PREFETCH_AHEAD};
 use crate::{Bound, Config, Tree};
@@ -38,7 +38,7 @@ impl<B: Bound> Tree<B> {
             atoms.push(Atom::new(Ref::leaf(id), bound));
         }
         tree.len = atoms.len();
-        tree.install(&mut atoms);
+        tree.install(&mut atoms, Clusters::BySah);
         Ok(tree)
     }
 
@@ -93,7 +93,7 @@ impl<B: Bound> Tree<B> {
             atoms.push(Atom::new(Ref::leaf(id), bound));
         }
         self.len += leaves.len();
-        self.install(&mut atoms);
+        self.install(&mut atoms, Clusters::BySah);
         Ok(())
     }
 
@@ -101,8 +101,13 @@ impl<B: Bound> Tree<B> {
     /// O(n log n) in one call: for loads and tests. Per frame, use
     /// [`Tree::update`] or [`Tree::optimize`], whose work is bounded.
     pub fn rebuild(&mut self) {
+        self.rebuild_with(Clusters::BySah);
+    }
+
+    /// Rebuilds the whole tree, its clusters finished as `finish` says.
+    pub(crate) fn rebuild_with(&mut self, finish: Clusters) {
         let mut atoms = self.leaf_atoms();
-        self.install(&mut atoms);
+        self.install(&mut atoms, finish);
     }
 
     /// Every leaf as an atom with its tight bound, in node order.
@@ -125,8 +130,9 @@ impl<B: Bound> Tree<B> {
     }
 
     /// Replaces every node by a fresh build over `atoms` (all of them leaves),
-    /// in preorder from node 0, with no free nodes.
-    pub(crate) fn install(&mut self, atoms: &mut Vec<Atom<B>>) {
+    /// in preorder from node 0, with no free nodes, its clusters finished as
+    /// `finish` says.
+    pub(crate) fn install(&mut self, atoms: &mut Vec<Atom<B>>, finish: Clusters) {
         self.free = Ref::NONE;
         self.free_count = 0;
         match atoms.as_slice() {
@@ -142,7 +148,7 @@ impl<B: Bound> Tree<B> {
             }
             _ => {
                 self.resize_nodes(atoms.len() - 1);
-                self.root_bound = build_morton(atoms, &mut self.nodes);
+                self.root_bound = build_morton(atoms, &mut self.nodes, finish);
                 self.root = Ref::node(0);
                 self.relink_all();
             }

@@ -1,21 +1,27 @@
 //! A whole rebuild taken a step at a time, so that no frame pays for all
-//! of it: the same build as [`Tree::rebuild`](crate::Tree::rebuild)
-//! (Morton-sorted clusters joined by binned SAH, [`crate::morton`]), one
-//! phase a step, each reading the leaves' bounds as they are then. The
+//! of it: the build of [`Tree::rebuild`](crate::Tree::rebuild) (Morton-sorted
+//! clusters joined by binned SAH, [`crate::morton`]), one phase a step, each
+//! reading the leaves' bounds as they are then. Its clusters are built as
+//! [`Clusters`] says: by binned SAH, over [`EXPAND_STEPS`] steps (most of
+//! the build's work), or split by code in one. The
 //! result is a topology alone (child references, 8 bytes a node), which the
 //! refit that installs it gives every node its bounds. When the steps are
 //! taken, and what becomes of leaves that move meanwhile, is the update
 //! policy's ([`crate::policy`]).
 
 use crate::Bound;
-use crate::build::{Atom, Expand, build, size_class};
+use crate::build::{Atom, Expand, NoClusters, build, size_class};
 use crate::leaves::Leaves;
-use crate::morton::{Grid, LARGE_CLASSES, cut, lbvh, median_of, radix_sort};
+use crate::morton::{Clusters, Grid, LARGE_CLASSES, cut, lbvh, median_of, radix_sort};
 use crate::node::{NodeOut, Ref};
 
-/// The frames a rebuild taking a step a frame takes, its install included:
-/// one a step, and the refit that installs it.
-pub(crate) const STAGED_FRAMES: usize = 7;
+/// The steps the clusters' SAH builds are shared out over: in one step they
+/// would cost a frame about as much as the pair search.
+const EXPAND_STEPS: usize = 3;
+/// The frames a rebuild with SAH clusters taking a step a frame takes (a
+/// drift rebuild), its install included: one a step, and the refit that
+/// installs it.
+pub(crate) const STAGED_FRAMES: usize = 6 + EXPAND_STEPS;
 
 /// A cluster not yet expanded, as the top build leaves it in the topology:
 /// its first node holds this bit and the cluster's size, then the position
@@ -36,7 +42,8 @@ enum Step {
     Clusters,
     /// Binned SAH over the clusters and large leaves: the top of the tree.
     Top,
-    /// The clusters expanded into their subtrees.
+    /// The clusters expanded into their subtrees: a share of the topology
+    /// a step, in as many steps as the clusters' finish takes.
     Expand,
     /// Done: the topology waits for the next refit.
     Ready,
@@ -45,6 +52,8 @@ enum Step {
 /// A rebuild in progress (see the module docs).
 #[derive(Clone, Debug)]
 pub(crate) struct Staged<B: Bound> {
+    /// How the clusters are built.
+    finish: Clusters,
     /// What the next step does.
     step: Step,
     /// How many leaves fall in each size class.
@@ -65,12 +74,17 @@ pub(crate) struct Staged<B: Bound> {
     atoms: Vec<Atom<B>>,
     /// Each internal node's children, in preorder from the root.
     topology: Vec<[Ref; 2]>,
+    /// The expand steps taken.
+    expanded: usize,
+    /// The topology node the next expand step starts at.
+    expand_at: usize,
 }
 
-impl<B: Bound> Default for Staged<B> {
-    /// A build not begun.
-    fn default() -> Self {
+impl<B: Bound> Staged<B> {
+    /// A build not begun, its clusters to be built as `finish` says.
+    pub(crate) fn new(finish: Clusters) -> Self {
         Staged {
+            finish,
             step: Step::Codes,
             counts: [0; 256],
             classes: Vec::new(),
@@ -81,11 +95,11 @@ impl<B: Bound> Default for Staged<B> {
             clusters: Vec::new(),
             atoms: Vec::new(),
             topology: Vec::new(),
+            expanded: 0,
+            expand_at: 0,
         }
     }
-}
 
-impl<B: Bound> Staged<B> {
     /// Whether every step is taken: the topology waits for its install.
     pub(crate) fn is_ready(&self) -> bool {
         self.step == Step::Ready
@@ -148,7 +162,7 @@ impl<B: Bound> Staged<B> {
                 }
                 (self.keyed, self.classes) = (Vec::new(), Vec::new());
                 if !self.ids.is_empty() {
-                    cut(&self.codes, 0, self.ids.len(), &mut self.clusters);
+                    cut(&self.codes, 0, self.ids.len(), self.finish.most(), &mut self.clusters);
                 }
                 self.step = Step::Clusters;
             }
@@ -191,9 +205,16 @@ impl<B: Bound> Staged<B> {
                 self.step = Step::Expand;
             }
             Step::Expand => {
-                let mut leaves = Vec::new();
-                let mut x = 0;
-                while x < self.topology.len() {
+                let steps = match self.finish {
+                    Clusters::ByCode => 1,
+                    Clusters::BySah => EXPAND_STEPS,
+                };
+                // The clusters that begin in this step's share of the
+                // topology; the last step's share ends with it.
+                let end = self.topology.len() * (self.expanded + 1) / steps;
+                let mut atoms = Vec::new();
+                let mut x = self.expand_at;
+                while x < end {
                     let [mark, start] = self.topology[x];
                     if mark.0 & (DEFERRED | Ref::LEAF) != DEFERRED {
                         x += 1;
@@ -201,24 +222,34 @@ impl<B: Bound> Staged<B> {
                     }
                     let (start, weight) = (start.0 as usize, (mark.0 & !DEFERRED) as usize);
                     let range = start..start + weight;
-                    // Split by code alone: the bounds are the refit's to set.
-                    leaves.clear();
-                    leaves.extend(
-                        self.ids[range.clone()]
-                            .iter()
-                            .map(|&id| Atom::new(Ref::leaf(id), B::default())),
-                    );
-                    lbvh(
-                        &leaves,
-                        &self.codes[range],
-                        &mut self.topology[x..x + weight - 1],
-                        x as u32,
-                    );
+                    let ids = &self.ids[range.clone()];
+                    let out = &mut self.topology[x..x + weight - 1];
+                    atoms.clear();
+                    match self.finish {
+                        // Split by code alone: the bounds are the refit's
+                        // to set.
+                        Clusters::ByCode => {
+                            let leaf = |&id| Atom::new(Ref::leaf(id), B::default());
+                            atoms.extend(ids.iter().map(leaf));
+                            lbvh(&atoms, &self.codes[range], out, x as u32);
+                        }
+                        Clusters::BySah => {
+                            atoms.extend(ids.iter().enumerate().map(|(k, &id)| {
+                                leaves.prefetch_ahead(ids, k);
+                                Atom::new(Ref::leaf(id), bound(id))
+                            }));
+                            build(&mut atoms, out, x as u32, &NoClusters);
+                        }
+                    }
                     // The cluster's other nodes, just written, hold no marks.
                     x += weight - 1;
                 }
-                (self.ids, self.codes, self.large) = (Vec::new(), Vec::new(), Vec::new());
-                self.step = Step::Ready;
+                self.expand_at = x;
+                self.expanded += 1;
+                if self.expanded == steps {
+                    (self.ids, self.codes, self.large) = (Vec::new(), Vec::new(), Vec::new());
+                    self.step = Step::Ready;
+                }
             }
             Step::Ready => {}
         }
