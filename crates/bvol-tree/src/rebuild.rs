@@ -266,3 +266,63 @@ impl<B: Bound> Tree<B> {
         (root_area + inner) / root_area
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use bvol_volumes::Aabb;
+    use glam::Vec3;
+
+    use super::*;
+    use crate::build::{NoClusters, build};
+
+    /// `n` unit boxes: scattered through a cube (about one pair a box), or
+    /// gathered in 16 dense clusters; from a fixed linear congruential
+    /// sequence.
+    fn boxes(n: usize, clustered: bool) -> Vec<Aabb> {
+        let mut state = 0x2545_f491_4f6c_dd1d_u64;
+        let mut next = move || {
+            state = state.wrapping_mul(6_364_136_223_846_793_005).wrapping_add(1);
+            (state >> 40) as f32 / (1u64 << 24) as f32
+        };
+        let side = (n as f32 * 8.0).cbrt();
+        let centres: Vec<Vec3> =
+            (0..16).map(|_| Vec3::new(next(), next(), next()) * side).collect();
+        (0..n)
+            .map(|i| {
+                let p = match clustered {
+                    false => Vec3::new(next(), next(), next()) * side,
+                    // The sum of three draws: bunched about the centre.
+                    true => {
+                        let spread = |_| (next() + next() + next() - 1.5) * side * 0.1;
+                        centres[i % 16] + Vec3::from_array([0; 3].map(spread))
+                    }
+                };
+                Aabb::new(p, p + Vec3::ONE)
+            })
+            .collect()
+    }
+
+    /// A load's tree (Morton-sorted clusters built by SAH) leaves a pair
+    /// search nearly as few node pairs to visit as binned SAH over every
+    /// leaf, the slower build it stands in for: 1.3% and 2.8% more here,
+    /// where clusters split by code left 22% more on the scattered boxes.
+    #[test]
+    fn a_load_is_searched_about_as_fast_as_a_binned_sah_build() {
+        for clustered in [false, true] {
+            let boxes = boxes(20_000, clustered);
+            let load = Tree::from_bounds(&boxes).unwrap();
+            let mut sah = load.clone();
+            let mut atoms = sah.leaf_atoms();
+            sah.root_bound = build(&mut atoms, &mut sah.nodes, 0, &NoClusters).1;
+            sah.relink_all();
+            sah.validate().unwrap();
+            let (mut a, mut b) = (Vec::new(), Vec::new());
+            let (ours, theirs) = (load.pairs_into(&mut a), sah.pairs_into(&mut b));
+            a.sort_unstable();
+            b.sort_unstable();
+            assert_eq!(a, b, "clustered {clustered}: other pairs");
+            let ratio = ours.node_pairs as f64 / theirs.node_pairs as f64;
+            assert!(ratio < 1.06, "clustered {clustered}: {ratio} times the node pairs");
+        }
+    }
+}
