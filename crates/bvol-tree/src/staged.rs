@@ -19,9 +19,10 @@ use crate::node::{NodeOut, Ref};
 /// would cost a frame about as much as the pair search.
 const EXPAND_STEPS: usize = 3;
 /// The frames a rebuild with SAH clusters taking a step a frame takes (a
-/// drift rebuild), its install included: one a step, and the refit that
-/// installs it.
-pub(crate) const STAGED_FRAMES: usize = 6 + EXPAND_STEPS;
+/// drift rebuild), its install included: one for each of the five steps
+/// before the expand ([`Step::Codes`] to [`Step::Top`]), one an expand step,
+/// and the refit that installs it.
+pub(crate) const STAGED_FRAMES: usize = 5 + EXPAND_STEPS + 1;
 
 /// A cluster not yet expanded, as the top build leaves it in the topology:
 /// its first node holds this bit and the cluster's size, then the position
