@@ -3,11 +3,14 @@
 //! clusters joined by binned SAH, [`crate::morton`]), one phase a step, each
 //! reading the leaves' bounds as they are then. Its clusters are built as
 //! [`Clusters`] says: by binned SAH, over [`EXPAND_STEPS`] steps (most of
-//! the build's work), or split by code in one. The
-//! result is a topology alone (child references, 8 bytes a node), which the
+//! the build's work), or split by code in one; either way on rayon tasks, a
+//! cluster a task, as is the step that bounds the clusters. The result is
+//! a topology alone (child references, 8 bytes a node), which the
 //! refit that installs it gives every node its bounds. When the steps are
 //! taken, and what becomes of leaves that move meanwhile, is the update
 //! policy's ([`crate::policy`]).
+
+use rayon::prelude::*;
 
 use crate::Bound;
 use crate::build::{Atom, Expand, NoClusters, build, size_class};
@@ -126,21 +129,9 @@ impl<B: Bound> Staged<B> {
     /// Takes the next step over the `leaves` as they are now; `stale` are
     /// the ids that jumped clear of their bound since the build began.
     pub(crate) fn advance(&mut self, leaves: &Leaves<'_, B>, stale: &[u32]) {
-        let bound = |id: u32| leaves.bound(id).expect("a staged leaf is in the tree");
         match self.step {
             Step::Codes => {
-                // In node order: the bounds are read in memory order, and
-                // the classes (a byte an id) are written in the cache.
-                let box_ = leaves.root_bound.aabb();
-                let grid = Grid::new(box_.min, box_.max);
-                self.classes = vec![0; leaves.leaf_parents.len()];
-                self.keyed = Vec::with_capacity(leaves.len);
-                for (id, b) in leaves.in_node_order() {
-                    let class = size_class(&b);
-                    self.classes[id as usize] = class;
-                    self.counts[class as usize] += 1;
-                    self.keyed.push((grid.code(b.center()), id));
-                }
+                self.take_codes(leaves);
                 self.step = Step::Sort;
             }
             Step::Sort => {
@@ -168,34 +159,7 @@ impl<B: Bound> Staged<B> {
                 self.step = Step::Clusters;
             }
             Step::Clusters => {
-                self.atoms = Vec::with_capacity(self.clusters.len() + self.large.len());
-                self.atoms.extend(self.large.iter().map(|&id| Atom::new(Ref::leaf(id), bound(id))));
-                // Sorted by code, the leaves lie anywhere in the nodes: each
-                // read asks for a later one's parent link and node first
-                // (past the caches, one request a cluster left most reads
-                // waiting).
-                let ids = &self.ids;
-                let bound_at = |k: usize| {
-                    leaves.prefetch_ahead(ids, k);
-                    bound(ids[k])
-                };
-                // A leaf that jumped since the codes were taken sits in its
-                // cluster where it was, and is reinserted at the install:
-                // its bound now would stretch the cluster across the gap
-                // and mislead the top build (a trickle of teleports would
-                // leave the installed tree far costlier than a fresh build).
-                let mut jumped = vec![false; leaves.leaf_parents.len()];
-                stale.iter().for_each(|&id| jumped[id as usize] = true);
-                for &(start, end) in &self.clusters {
-                    let run = &self.ids[start..end];
-                    let kept = (start..end).filter(|&k| !jumped[ids[k] as usize]);
-                    let merged = kept.map(bound_at).reduce(|a, b| a.merge(&b));
-                    let merged = merged.unwrap_or_else(|| bound(run[0]));
-                    self.atoms.push(match run {
-                        &[one] => Atom::new(Ref::leaf(one), merged),
-                        _ => Atom::weighted(Ref(start as u32), merged, run.len() as u32),
-                    });
-                }
+                self.bound_clusters(leaves, stale);
                 self.clusters = Vec::new();
                 self.step = Step::Top;
             }
@@ -213,39 +177,7 @@ impl<B: Bound> Staged<B> {
                 // The clusters that begin in this step's share of the
                 // topology; the last step's share ends with it.
                 let end = self.topology.len() * (self.expanded + 1) / steps;
-                let mut atoms = Vec::new();
-                let mut x = self.expand_at;
-                while x < end {
-                    let [mark, start] = self.topology[x];
-                    if mark.0 & (DEFERRED | Ref::LEAF) != DEFERRED {
-                        x += 1;
-                        continue;
-                    }
-                    let (start, weight) = (start.0 as usize, (mark.0 & !DEFERRED) as usize);
-                    let range = start..start + weight;
-                    let ids = &self.ids[range.clone()];
-                    let out = &mut self.topology[x..x + weight - 1];
-                    atoms.clear();
-                    match self.finish {
-                        // Split by code alone: the bounds are the refit's
-                        // to set.
-                        Clusters::ByCode => {
-                            let leaf = |&id| Atom::new(Ref::leaf(id), B::default());
-                            atoms.extend(ids.iter().map(leaf));
-                            lbvh(&atoms, &self.codes[range], out, x as u32);
-                        }
-                        Clusters::BySah => {
-                            atoms.extend(ids.iter().enumerate().map(|(k, &id)| {
-                                leaves.prefetch_ahead(ids, k);
-                                Atom::new(Ref::leaf(id), bound(id))
-                            }));
-                            build(&mut atoms, out, x as u32, &NoClusters);
-                        }
-                    }
-                    // The cluster's other nodes, just written, hold no marks.
-                    x += weight - 1;
-                }
-                self.expand_at = x;
+                self.expand_at = self.expand_clusters(leaves, end);
                 self.expanded += 1;
                 if self.expanded == steps {
                     (self.ids, self.codes, self.large) = (Vec::new(), Vec::new(), Vec::new());
@@ -255,6 +187,107 @@ impl<B: Bound> Staged<B> {
             Step::Ready => {}
         }
     }
+
+    /// The Morton code and size class of every leaf, and the classes'
+    /// histogram. In node order: the bounds are read in memory order, and
+    /// the classes (a byte an id) are written in the cache.
+    fn take_codes(&mut self, leaves: &Leaves<'_, B>) {
+        let box_ = leaves.root_bound.aabb();
+        let grid = Grid::new(box_.min, box_.max);
+        self.classes = vec![0; leaves.leaf_parents.len()];
+        self.keyed = Vec::with_capacity(leaves.len);
+        for (id, b) in leaves.in_node_order() {
+            let class = size_class(&b);
+            self.classes[id as usize] = class;
+            self.counts[class as usize] += 1;
+            self.keyed.push((grid.code(b.center()), id));
+        }
+    }
+
+    /// The atoms of the top build: the large leaves, and each cluster with
+    /// the merged bound of its leaves that did not jump (`stale`), on rayon
+    /// tasks, in order.
+    fn bound_clusters(&mut self, leaves: &Leaves<'_, B>, stale: &[u32]) {
+        let bound = |id| bound_of(leaves, id);
+        self.atoms = Vec::with_capacity(self.clusters.len() + self.large.len());
+        self.atoms.extend(self.large.iter().map(|&id| Atom::new(Ref::leaf(id), bound(id))));
+        // Sorted by code, the leaves lie anywhere in the nodes: each read
+        // asks for a later one's parent link and node first (past the
+        // caches, one request a cluster left most reads waiting).
+        let ids = &self.ids;
+        let bound_at = |k: usize| {
+            leaves.prefetch_ahead(ids, k);
+            bound(ids[k])
+        };
+        // A leaf that jumped since the codes were taken sits in its cluster
+        // where it was, and is reinserted at the install: its bound now
+        // would stretch the cluster across the gap and mislead the top build
+        // (a trickle of teleports would leave the installed tree far
+        // costlier than a fresh build).
+        let mut jumped = vec![false; leaves.leaf_parents.len()];
+        stale.iter().for_each(|&id| jumped[id as usize] = true);
+        let clusters = self.clusters.par_iter().map(|&(start, end)| {
+            let run = &ids[start..end];
+            let kept = (start..end).filter(|&k| !jumped[ids[k] as usize]);
+            let merged = kept.map(bound_at).reduce(|a, b| a.merge(&b));
+            let merged = merged.unwrap_or_else(|| bound(run[0]));
+            match run {
+                &[one] => Atom::new(Ref::leaf(one), merged),
+                _ => Atom::weighted(Ref(start as u32), merged, run.len() as u32),
+            }
+        });
+        self.atoms.par_extend(clusters);
+    }
+
+    /// Expands the deferred clusters that begin in the topology from
+    /// `expand_at` up to `end`; returns where the next share begins. Each
+    /// cluster's nodes are a run of the topology of their own, so the
+    /// clusters are built on rayon tasks, the same on any number of threads:
+    /// on one, a step of SAH clusters was most of a frame.
+    fn expand_clusters(&mut self, leaves: &Leaves<'_, B>, end: usize) -> usize {
+        // Marks first, each cluster's run split off the topology in turn.
+        let mut runs = Vec::new();
+        let mut rest = &mut self.topology[self.expand_at..];
+        let mut x = self.expand_at;
+        while x < end {
+            let [mark, start] = rest[0];
+            if mark.0 & (DEFERRED | Ref::LEAF) != DEFERRED {
+                rest = &mut rest[1..];
+                x += 1;
+                continue;
+            }
+            let (start, weight) = (start.0 as usize, (mark.0 & !DEFERRED) as usize);
+            let (out, tail) = rest.split_at_mut(weight - 1);
+            runs.push((out, x as u32, start..start + weight));
+            // The cluster's other nodes hold no marks.
+            (rest, x) = (tail, x + weight - 1);
+        }
+        let (finish, ids, codes) = (self.finish, &self.ids, &self.codes);
+        runs.into_par_iter().for_each_init(Vec::new, |atoms, (out, base, range)| {
+            let ids = &ids[range.clone()];
+            atoms.clear();
+            match finish {
+                // Split by code alone: the bounds are the refit's to set.
+                Clusters::ByCode => {
+                    atoms.extend(ids.iter().map(|&id| Atom::new(Ref::leaf(id), B::default())));
+                    lbvh(atoms, &codes[range], out, base);
+                }
+                Clusters::BySah => {
+                    atoms.extend(ids.iter().enumerate().map(|(k, &id)| {
+                        leaves.prefetch_ahead(ids, k);
+                        Atom::new(Ref::leaf(id), bound_of(leaves, id))
+                    }));
+                    build(atoms, out, base, &NoClusters);
+                }
+            }
+        });
+        x
+    }
+}
+
+/// Leaf `id`'s bound: every leaf a staged build names is in the tree.
+fn bound_of<B: Bound>(leaves: &Leaves<'_, B>, id: u32) -> B {
+    leaves.bound(id).expect("a staged leaf is in the tree")
 }
 
 /// The top build's clusters, left for [`Step::Expand`]: each marks its first
