@@ -245,23 +245,25 @@ impl<B: Bound> Staged<B> {
     /// clusters are built on rayon tasks, the same on any number of threads:
     /// on one, a step of SAH clusters was most of a frame.
     fn expand_clusters(&mut self, leaves: &Leaves<'_, B>, end: usize) -> usize {
-        // Marks first, each cluster's run split off the topology in turn.
+        // Marks first, each cluster's run split off the topology in turn
+        // (`rest` begins at node `at(rest)`).
         let mut runs = Vec::new();
+        let len = self.topology.len();
         let mut rest = &mut self.topology[self.expand_at..];
-        let mut x = self.expand_at;
-        while x < end {
+        let at = |rest: &[[Ref; 2]]| len - rest.len();
+        while at(rest) < end {
             let [mark, start] = rest[0];
             if mark.0 & (DEFERRED | Ref::LEAF) != DEFERRED {
                 rest = &mut rest[1..];
-                x += 1;
                 continue;
             }
-            let (start, weight) = (start.0 as usize, (mark.0 & !DEFERRED) as usize);
+            let (x, start, weight) = (at(rest), start.0 as usize, (mark.0 & !DEFERRED) as usize);
+            // The cluster's other nodes hold no marks.
             let (out, tail) = rest.split_at_mut(weight - 1);
             runs.push((out, x as u32, start..start + weight));
-            // The cluster's other nodes hold no marks.
-            (rest, x) = (tail, x + weight - 1);
+            rest = tail;
         }
+        let next = at(rest);
         let (finish, ids, codes) = (self.finish, &self.ids, &self.codes);
         runs.into_par_iter().for_each_init(Vec::new, |atoms, (out, base, range)| {
             let ids = &ids[range.clone()];
@@ -281,7 +283,7 @@ impl<B: Bound> Staged<B> {
                 }
             }
         });
-        x
+        next
     }
 }
 
