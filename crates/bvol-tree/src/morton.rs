@@ -8,6 +8,7 @@
 //! build's time, for a tree whose pair searches visit fewer node pairs.
 
 use glam::Vec3;
+use rayon::prelude::*;
 
 use crate::Bound;
 use crate::build::{Atom, Expand, NoClusters, build};
@@ -40,6 +41,12 @@ impl Clusters {
 /// Leaves whose area is at least 2^(this + 1) times the median's are kept
 /// out of the clusters.
 pub(crate) const LARGE_CLASSES: u8 = 4;
+/// Clusters a rayon task bounds in a whole build: enough that the task's
+/// overhead is lost in the gathers.
+const CLUSTERS_A_TASK: usize = 256;
+/// Leaves a rayon task reads in a whole build's passes over them (the size
+/// classes, the box, the codes).
+const LEAVES_A_TASK: usize = 4096;
 /// Bits per axis of a Morton code (30 bits in all).
 const BITS: u32 = 10;
 /// The last cell of a Morton grid along an axis.
@@ -47,8 +54,8 @@ const LAST_CELL: f32 = ((1 << BITS) - 1) as f32;
 
 /// Builds a tree over `leaves` (at least 2, weight 1 each) into `out`, which
 /// must hold `leaves.len() - 1` nodes: preorder, `out[0]` the root, the
-/// clusters finished as `finish` says. Returns the root's bound. `leaves`
-/// is left reordered.
+/// clusters finished as `finish` says. Returns the root's bound. The large
+/// leaves (see below) are taken out of `leaves`.
 pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(
     leaves: &mut Vec<Atom<B>>,
     out: &mut [N],
@@ -66,31 +73,37 @@ pub(crate) fn build_morton<B: Bound, N: NodeOut<B>>(
     if !atoms.is_empty() {
         leaves.retain(|a| !is_large(a));
     }
-    let codes = sort(leaves);
+    let (codes, order) = sort(leaves);
     let mut clusters = Vec::with_capacity(leaves.len() / (finish.most() / 2) + 1);
     if !leaves.is_empty() {
         cut(&codes, 0, leaves.len(), finish.most(), &mut clusters);
     }
-    atoms.extend(clusters.iter().map(|&(start, end)| {
+    let leaf = |k: usize| &leaves[order[k] as usize];
+    let bounded = clusters.par_iter().with_min_len(CLUSTERS_A_TASK).map(|&(start, end)| {
         if end - start == 1 {
-            return leaves[start];
+            return *leaf(start);
         }
-        let bound =
-            leaves[start + 1..end].iter().fold(leaves[start].bound, |b, a| b.merge(&a.bound));
+        let bound = (start + 1..end).fold(leaf(start).bound, |b, k| b.merge(&leaf(k).bound));
         // A cluster is named by the position of its first leaf.
         Atom::weighted(Ref(start as u32), bound, (end - start) as u32)
-    }));
-    let sorted = Sorted { leaves, codes: &codes, finish };
+    });
+    atoms.par_extend(bounded);
+    let sorted = Sorted { leaves, order: &order, codes: &codes, finish };
     build(&mut atoms, out, 0, &sorted).1
 }
 
 /// The median size class of the leaves, from a histogram of the 256 classes.
 fn median_class<B: Bound>(leaves: &[Atom<B>]) -> u8 {
-    let mut counts = [0usize; 256];
-    for a in leaves {
-        counts[a.class as usize] += 1;
-    }
-    median_of(&counts)
+    let count = |run: &[Atom<B>]| {
+        let mut counts = [0; 256];
+        run.iter().for_each(|a| counts[a.class as usize] += 1);
+        counts
+    };
+    let add = |mut a: [usize; 256], b: [usize; 256]| {
+        a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+        a
+    };
+    median_of(&leaves.par_chunks(LEAVES_A_TASK).map(count).reduce(|| [0; 256], add))
 }
 
 /// The median class of a histogram of size classes.
@@ -106,10 +119,12 @@ pub(crate) fn median_of(counts: &[usize; 256]) -> u8 {
     u8::MAX
 }
 
-/// Leaves in Morton order with their codes: expands a cluster atom (named by
-/// its first leaf's position) into a subtree, as `finish` says.
+/// Leaves in Morton order (`leaves[order[k]]`, of code `codes[k]`): expands
+/// a cluster atom (named by its first leaf's position) into a subtree, as
+/// `finish` says.
 struct Sorted<'a, B: Bound> {
     leaves: &'a [Atom<B>],
+    order: &'a [u32],
     codes: &'a [u32],
     finish: Clusters,
 }
@@ -117,13 +132,28 @@ struct Sorted<'a, B: Bound> {
 impl<B: Bound> Expand<B> for Sorted<'_, B> {
     fn expand<N: NodeOut<B>>(&self, atom: &Atom<B>, out: &mut [N], base: u32) -> (Ref, B) {
         let range = atom.r.0 as usize..atom.r.0 as usize + atom.weight as usize;
-        match self.finish {
-            Clusters::ByCode => {
-                (Ref::node(base), lbvh(&self.leaves[range.clone()], &self.codes[range], out, base))
-            }
-            // The build partitions its atoms in place: a copy of the
-            // cluster's, which other tasks' clusters lie beside.
-            Clusters::BySah => build(&mut self.leaves[range].to_vec(), out, base, &NoClusters),
+        // Gathered: the build partitions its atoms in place, and other
+        // tasks' clusters' leaves lie among these.
+        let mut atoms: Vec<_> =
+            self.order[range.clone()].iter().map(|&i| self.leaves[i as usize]).collect();
+        (Ref::node(base), self.finish.build(&mut atoms, &self.codes[range], out, base))
+    }
+}
+
+impl Clusters {
+    /// Builds a cluster of `atoms` (at least 2 leaves, in Morton order, of
+    /// codes `codes`) into `out` as this finish says: its nodes, `out[i]`
+    /// named `base + i`, the cluster's root first. Returns its bound.
+    pub(crate) fn build<B: Bound, N: NodeOut<B>>(
+        self,
+        atoms: &mut [Atom<B>],
+        codes: &[u32],
+        out: &mut [N],
+        base: u32,
+    ) -> B {
+        match self {
+            Clusters::ByCode => lbvh(atoms, codes, out, base),
+            Clusters::BySah => build(atoms, out, base, &NoClusters).1,
         }
     }
 }
@@ -158,25 +188,29 @@ pub(crate) fn cut(
     cut(codes, mid, end, most, clusters);
 }
 
-/// Sorts `leaves` by the Morton code of their centres (in the [`Grid`] over
-/// the leaves' box) with a stable LSD radix sort, and returns the sorted
-/// codes.
-fn sort<B: Bound>(leaves: &mut [Atom<B>]) -> Vec<u32> {
+/// The order of `leaves` by the Morton code of their centres (in the
+/// [`Grid`] over the leaves' box), by a stable LSD radix sort: the codes
+/// sorted, and the position in `leaves` of each. The leaves stay where
+/// they are: the clusters gather theirs, on their tasks, where moving them
+/// into order here would chase the permutation's cycles on one thread.
+fn sort<B: Bound>(leaves: &[Atom<B>]) -> (Vec<u32>, Vec<u32>) {
     // The box of the bounds, not of the centres: the grid a staged rebuild
     // takes from the root's bound, so that for boxes both builds make the
     // same tree. (On boxes resting on a floor, the centres' box, far
     // thinner than the bounds', would split them first across their
-    // thickness, into a costlier tree.)
-    let (lo, hi) = leaves.iter().fold((Vec3::INFINITY, Vec3::NEG_INFINITY), |(lo, hi), a| {
-        let b = a.bound.aabb();
-        (lo.min(b.min), hi.max(b.max))
-    });
+    // thickness, into a costlier tree.) A minimum and a maximum come out
+    // the same in any grouping: so does the box on any number of threads.
+    let each = || leaves.par_iter().with_min_len(LEAVES_A_TASK);
+    let empty = || (Vec3::INFINITY, Vec3::NEG_INFINITY);
+    let (lo, hi) = each()
+        .map(|a| a.bound.aabb())
+        .fold(empty, |(lo, hi), b| (lo.min(b.min), hi.max(b.max)))
+        .reduce(empty, |(lo, hi), (l, h)| (lo.min(l), hi.max(h)));
     let grid = Grid::new(lo, hi);
-    let mut keyed: Vec<(u32, u32)> =
-        leaves.iter().enumerate().map(|(i, a)| (grid.code(a.center), i as u32)).collect();
+    let mut keyed = Vec::new();
+    each().enumerate().map(|(i, a)| (grid.code(a.center), i as u32)).collect_into_vec(&mut keyed);
     radix_sort(&mut keyed);
-    permute(leaves, &mut keyed);
-    keyed.into_iter().map(|(c, _)| c).collect()
+    keyed.into_iter().unzip()
 }
 
 /// The Morton grid over a box (the leaves' bounds'): 2^10 cubic cells
@@ -209,30 +243,6 @@ impl Grid {
     pub(crate) fn code(&self, p: Vec3) -> u32 {
         let q = ((p - self.lo) * self.scale).clamp(Vec3::ZERO, Vec3::splat(LAST_CELL)).as_uvec3();
         spread(q.x) | spread(q.y) << 1 | spread(q.z) << 2
-    }
-}
-
-/// Reorders `items` in place so that position `p` holds the item that was
-/// at `from[p].1`, following the permutation's cycles (each item moves once,
-/// with no second array of items, whose pages would be faulted in at every
-/// build). Leaves every `from[p].1` spent.
-fn permute<T: Copy>(items: &mut [T], from: &mut [(u32, u32)]) {
-    const DONE: u32 = u32::MAX;
-    for start in 0..items.len() {
-        if from[start].1 == DONE {
-            continue;
-        }
-        let first = items[start];
-        let mut p = start;
-        loop {
-            let src = std::mem::replace(&mut from[p].1, DONE) as usize;
-            if src == start {
-                items[p] = first;
-                break;
-            }
-            items[p] = items[src];
-            p = src;
-        }
     }
 }
 
@@ -299,16 +309,17 @@ mod tests {
     use super::*;
 
     proptest! {
-        /// The in-place permutation gives what a gather into a new array gives.
+        /// The radix sort orders by the 30-bit key as a stable sort does:
+        /// equal keys keep their values' order.
         #[test]
-        fn permute_matches_a_gather(keys in prop::collection::vec(any::<u32>(), 0..300)) {
-            let mut order: Vec<(u32, u32)> = (0..keys.len() as u32).map(|i| (keys[i as usize], i)).collect();
-            order.sort_by_key(|&(k, i)| (k, i)); // some permutation of the positions
-            let items: Vec<u64> = (0..keys.len() as u64).map(|i| i * 7 + 3).collect();
-            let gathered: Vec<u64> = order.iter().map(|&(_, i)| items[i as usize]).collect();
-            let mut permuted = items.clone();
-            permute(&mut permuted, &mut order);
-            prop_assert_eq!(permuted, gathered);
+        fn radix_sort_matches_a_stable_sort(keys in prop::collection::vec(0u32..1 << 30, 0..300)) {
+            // Few distinct low bits too, so that equal keys are common.
+            let mut items: Vec<(u32, u32)> =
+                (0..).zip(&keys).map(|(i, &k)| (k & !0xff0, i)).collect();
+            let mut expected = items.clone();
+            expected.sort_by_key(|&(k, _)| k);
+            radix_sort(&mut items);
+            prop_assert_eq!(items, expected);
         }
     }
 }

@@ -13,9 +13,9 @@
 use rayon::prelude::*;
 
 use crate::Bound;
-use crate::build::{Atom, Expand, NoClusters, build, size_class};
+use crate::build::{Atom, Expand, build, size_class};
 use crate::leaves::Leaves;
-use crate::morton::{Clusters, Grid, LARGE_CLASSES, cut, lbvh, median_of, radix_sort};
+use crate::morton::{Clusters, Grid, LARGE_CLASSES, cut, median_of, radix_sort};
 use crate::node::{NodeOut, Ref};
 
 /// The steps the clusters' SAH builds are shared out over: in one step they
@@ -268,20 +268,15 @@ impl<B: Bound> Staged<B> {
         runs.into_par_iter().for_each_init(Vec::new, |atoms, (out, base, range)| {
             let ids = &ids[range.clone()];
             atoms.clear();
-            match finish {
+            atoms.extend(ids.iter().enumerate().map(|(k, &id)| match finish {
                 // Split by code alone: the bounds are the refit's to set.
-                Clusters::ByCode => {
-                    atoms.extend(ids.iter().map(|&id| Atom::new(Ref::leaf(id), B::default())));
-                    lbvh(atoms, &codes[range], out, base);
-                }
+                Clusters::ByCode => Atom::new(Ref::leaf(id), B::default()),
                 Clusters::BySah => {
-                    atoms.extend(ids.iter().enumerate().map(|(k, &id)| {
-                        leaves.prefetch_ahead(ids, k);
-                        Atom::new(Ref::leaf(id), bound_of(leaves, id))
-                    }));
-                    build(atoms, out, base, &NoClusters);
+                    leaves.prefetch_ahead(ids, k);
+                    Atom::new(Ref::leaf(id), bound_of(leaves, id))
                 }
-            }
+            }));
+            finish.build(atoms, &codes[range], out, base);
         });
         next
     }
