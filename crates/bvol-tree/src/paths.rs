@@ -5,9 +5,12 @@
 //! decide ([`crate::policy`]); the work is done by the kernels
 //! ([`crate::refit`], [`crate::moves`]).
 
+use rayon::prelude::*;
+
 use crate::error::TreeError;
 use crate::morton::Clusters;
 use crate::policy::{Install, Next};
+use crate::tuning::JUMPS_A_TASK;
 use crate::update::UpdateStats;
 use crate::{Bound, Tree};
 
@@ -63,7 +66,11 @@ impl<B: Bound> Tree<B> {
         let mut jumped = std::mem::take(&mut self.jumped);
         let cost = self.refit_pass(Some(bounds), &mut moved, &mut jumped);
         stats.moved = moved.len();
-        let jumps: Vec<(u32, B)> = jumped.iter().map(|&id| (id, bounds[id as usize])).collect();
+        // On tasks: in a mass motion nearly every leaf jumps, and the list's
+        // pages are fresh.
+        let mut jumps = Vec::new();
+        let each = jumped.par_iter().with_min_len(JUMPS_A_TASK);
+        each.map(|&id| (id, bounds[id as usize])).collect_into_vec(&mut jumps);
         self.after_refit(&jumps, moved.iter().copied(), cost, installed, stats);
         moved.clear();
         jumped.clear();

@@ -1,6 +1,8 @@
 //! Whole-tree construction: batch builds for level loads, full rebuilds,
 //! and the install of a rebuild staged over frames.
 
+use std::sync::atomic::{AtomicU32, Ordering};
+
 use rayon::prelude::*;
 
 use crate::build::Atom;
@@ -9,7 +11,7 @@ use crate::error::TreeError;
 use crate::morton::{Clusters, build_morton};
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{PASS_RUN, PREFETCH_AHEAD};
-use crate::{Bound, Config, Tree};
+use crate::{Bound, Config, Tree, one_thread};
 
 impl<B: Bound> Tree<B> {
     /// A tree over `bounds`, leaf `i` holding `bounds[i]` (ids `0..len`),
@@ -110,22 +112,42 @@ impl<B: Bound> Tree<B> {
         self.install(&mut atoms, finish);
     }
 
-    /// Every leaf as an atom with its tight bound, in node order.
+    /// Every leaf as an atom with its tight bound, in node order: runs of
+    /// nodes on rayon tasks, each writing its leaves' atoms in place after
+    /// the earlier runs' (whose leaves are counted first). The same atoms
+    /// on any number of threads.
     fn leaf_atoms(&self) -> Vec<Atom<B>> {
         if self.root.is_leaf() {
             return vec![Atom::new(self.root, self.root_bound)];
         }
-        let mut atoms = Vec::with_capacity(self.len);
-        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
-            if parent == NONE {
-                continue; // free
-            }
-            for side in 0..2 {
-                if node.child[side].is_leaf() {
-                    atoms.push(Atom::new(node.child[side], node.bound(side)));
-                }
-            }
+        // On one thread, one run, whose leaves are all the tree's: no count.
+        let size = if one_thread() { self.nodes.len() } else { PASS_RUN };
+        let runs = || self.nodes.par_chunks(size).zip(self.parents.par_chunks(size));
+        let counts: Vec<usize> = match one_thread() {
+            true => vec![self.len],
+            false => runs().map(|run| leaves(run).count()).collect(),
+        };
+        let n = counts.iter().sum();
+        let mut atoms = Vec::with_capacity(n);
+        let mut rest = &mut atoms.spare_capacity_mut()[..n];
+        let mut pieces = Vec::with_capacity(counts.len());
+        for count in counts {
+            let (piece, tail) = std::mem::take(&mut rest).split_at_mut(count);
+            pieces.push(piece);
+            rest = tail;
         }
+        let written: usize = runs()
+            .zip(pieces)
+            .map(|(run, piece)| {
+                let atoms = leaves(run).map(|(c, b)| Atom::new(c, b));
+                piece.iter_mut().zip(atoms).map(|(p, a)| p.write(a)).count()
+            })
+            .sum();
+        assert_eq!(written, n, "a run gave other leaves than it counted");
+        // SAFETY: the first `n` atoms are written: each run wrote as many
+        // as its piece holds (the leaves it counted), and the pieces tile
+        // them.
+        unsafe { atoms.set_len(n) };
         atoms
     }
 
@@ -230,14 +252,19 @@ impl<B: Bound> Tree<B> {
     }
 
     /// Sets every parent link from the child references, for a tree rooted
-    /// at node 0 with no free nodes.
+    /// at node 0 with no free nodes: runs of nodes on rayon tasks, each
+    /// setting its children's links (every link is some one node's to set).
     fn relink_all(&mut self) {
         self.parents[0] = ROOT;
-        for x in 0..self.nodes.len() {
-            for side in 0..2 {
-                self.set_parent(self.nodes[x].child[side], x as u32);
+        let (parents, leaf_parents) = (shared(&mut self.parents), shared(&mut self.leaf_parents));
+        self.nodes.par_chunks(PASS_RUN).enumerate().for_each(|(run, nodes)| {
+            for (x, node) in (run * PASS_RUN..).zip(nodes) {
+                for c in node.child {
+                    let links = if c.is_leaf() { leaf_parents } else { parents };
+                    links[c.index() as usize].store(x as u32, Ordering::Relaxed);
+                }
             }
-        }
+        });
     }
 
     /// The surface-area cost of the tree: the areas of the internal nodes'
@@ -265,6 +292,25 @@ impl<B: Bound> Tree<B> {
         let inner: f64 = sums.iter().sum();
         (root_area + inner) / root_area
     }
+}
+
+/// `links` as atomics, for rayon tasks to set entries of: the same memory.
+fn shared(links: &mut [u32]) -> &[AtomicU32] {
+    const { assert!(align_of::<u32>() == align_of::<AtomicU32>()) };
+    // SAFETY: an AtomicU32 has a u32's size and bit validity, and (checked
+    // above) its alignment; `links` is borrowed mutably for as long as the
+    // view, so no access but the view's atomic ones can race.
+    unsafe { std::slice::from_raw_parts(links.as_mut_ptr().cast::<AtomicU32>(), links.len()) }
+}
+
+/// The leaves among the children of a run of `nodes` (with their
+/// `parents`, free nodes skipped), with their bounds, in node order.
+fn leaves<'a, B: Bound>(
+    (nodes, parents): (&'a [Node<B>], &'a [u32]),
+) -> impl Iterator<Item = (Ref, B)> + 'a {
+    let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
+    let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
+    children.filter(|(c, _)| c.is_leaf())
 }
 
 #[cfg(test)]

@@ -95,3 +95,6 @@ pub(crate) const PARALLEL_REFIT: usize = 8192;
 /// balance two threads or more on 100 000 nodes. Fixed, so that the sum
 /// comes out the same on any number of threads.
 pub(crate) const PASS_RUN: usize = 4096;
+
+/// Jumped leaves a rayon task lists with their bounds after a refit.
+pub(crate) const JUMPS_A_TASK: usize = 4096;

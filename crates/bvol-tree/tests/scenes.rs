@@ -397,30 +397,12 @@ fn falling_boxes_are_refit_in_place_and_settle_into_a_fresh_tree() {
 #[test]
 fn boxes_faster_than_their_size_keep_the_tree_close_to_a_fresh_build() {
     let mut scene = Scene::<Aabb>::new(3000, 41);
-    let world = scene.world;
-    let mut velocities: Vec<Vec3> = (0..scene.bounds.len())
-        .map(|_| {
-            let v = Vec3::new(
-                scene.rng.range(-1.0, 1.0),
-                scene.rng.range(-1.0, 1.0),
-                scene.rng.range(-1.0, 1.0),
-            );
-            v * 3.0
-        })
-        .collect();
+    let mut velocities = velocities(&mut scene, 3.0);
     let mut tree = Tree::new();
     let mut set = PairSet::new();
     let (mut worst, mut rebuilds) = (0.0f64, 0);
     for f in 0..40 {
-        for (b, v) in scene.bounds.iter_mut().zip(&mut velocities) {
-            let centre = b.center() + *v;
-            for axis in 0..3 {
-                if centre[axis] < 0.0 || centre[axis] > world {
-                    v[axis] = -v[axis];
-                }
-            }
-            *b = b.shifted(*v);
-        }
+        dash(&mut scene, &mut velocities);
         let frame = tree.update(&scene.bounds).unwrap();
         rebuilds += usize::from(frame.rebuilt > 0 && !frame.installed);
         tree.validate().unwrap();
@@ -434,4 +416,54 @@ fn boxes_faster_than_their_size_keep_the_tree_close_to_a_fresh_build() {
     }
     assert!(worst < 3.0, "drifted to {worst} times a fresh build's cost");
     assert!(rebuilds >= 1, "never rebuilt in one go");
+}
+
+/// A rebuild in one go over many leaves, whose runs of nodes and clusters
+/// are split across rayon tasks (above 4 096 nodes), makes the same tree
+/// on any number of threads: the same pairs in the same order and the same
+/// cost, every frame. (The test above has 3 000 boxes.)
+#[test]
+fn a_rebuild_in_one_go_of_many_leaves_does_not_depend_on_the_thread_count() {
+    let run = |threads: usize| {
+        on_threads(threads, || {
+            let mut scene = Scene::<Aabb>::new(20_000, 43).mixed();
+            let mut velocities = velocities(&mut scene, 3.0);
+            let mut tree = Tree::new();
+            let (mut rebuilds, mut seen) = (0, Vec::new());
+            for _ in 0..8 {
+                dash(&mut scene, &mut velocities);
+                let frame = tree.update(&scene.bounds).unwrap();
+                rebuilds += usize::from(frame.rebuilt > 0 && !frame.installed);
+                seen.push((tree.pairs(), tree.sah_cost().to_bits()));
+            }
+            tree.validate().unwrap();
+            (rebuilds, seen)
+        })
+    };
+    let one = run(1);
+    assert!(one.0 >= 2, "{} rebuilds in one go", one.0);
+    assert!(run(2) == one, "two threads: another tree");
+    assert!(run(3) == one, "three threads: another tree");
+}
+
+/// A velocity for each box of `scene`, up to `most` along each axis.
+fn velocities(scene: &mut Scene<Aabb>, most: f32) -> Vec<Vec3> {
+    let rng = &mut scene.rng;
+    let mut draw = || Vec3::new(rng.range(-1.0, 1.0), rng.range(-1.0, 1.0), rng.range(-1.0, 1.0));
+    (0..scene.bounds.len()).map(|_| draw() * most).collect()
+}
+
+/// Moves every box of `scene` by its velocity, turning back at the walls
+/// of the world cube.
+fn dash(scene: &mut Scene<Aabb>, velocities: &mut [Vec3]) {
+    let world = scene.world;
+    for (b, v) in scene.bounds.iter_mut().zip(velocities) {
+        let centre = b.center() + *v;
+        for axis in 0..3 {
+            if centre[axis] < 0.0 || centre[axis] > world {
+                v[axis] = -v[axis];
+            }
+        }
+        *b = b.shifted(*v);
+    }
 }
