@@ -77,6 +77,9 @@ impl Changes {
         pairs: &mut Vec<(u32, u32)>,
         mut dropped: impl FnMut((u32, u32)),
     ) {
+        if !self.all && self.ids.is_empty() {
+            return; // nothing changed: every pair stays (a pile at rest)
+        }
         let bit = |id: u32| self.bit(id);
         let mut kept = 0;
         for start in (0..pairs.len()).step_by(LINE) {
@@ -156,6 +159,12 @@ mod tests {
             changes.drop_touched(&mut kept, |pair| dropped.push(pair));
             assert_eq!((kept, dropped), (keep, drop), "{len} pairs");
         }
+        // Nothing marked: every pair stays.
+        let (mut kept, mut dropped) = (pairs(300), Vec::new());
+        let mut unchanged = Changes::default();
+        unchanged.grow(100);
+        unchanged.drop_touched(&mut kept, |pair| dropped.push(pair));
+        assert_eq!((kept, dropped), (pairs(300), Vec::new()));
     }
 
     #[test]

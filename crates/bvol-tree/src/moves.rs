@@ -4,36 +4,31 @@
 use rayon::prelude::*;
 
 use crate::node::{NONE, Ref, Slot};
-use crate::tuning::{REMOVE_AHEAD, SIBLINGS_A_TASK};
+use crate::tuning::{PASS_RUN, REMOVE_AHEAD, SIBLINGS_A_TASK};
 use crate::update::UpdateStats;
 use crate::{Bound, Move, Tree};
 
 impl<B: Bound> Tree<B> {
     /// The ids `< bounds.len()` whose bound differs from the tree's, in node
-    /// order.
+    /// order: runs of nodes on rayon tasks, their lists joined in order.
     pub(crate) fn scan(&self, bounds: &[B]) -> Vec<u32> {
-        let mut moved = Vec::new();
         if self.root.is_leaf() {
             let id = self.root.index();
-            if bounds.get(id as usize).is_some_and(|b| *b != self.root_bound) {
-                moved.push(id);
-            }
-            return moved;
+            let moved = bounds.get(id as usize).is_some_and(|b| *b != self.root_bound);
+            return if moved { vec![id] } else { Vec::new() };
         }
-        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
-            if parent == NONE {
-                continue;
-            }
-            for side in 0..2 {
-                let c = node.child[side];
-                if c.is_leaf()
-                    && bounds.get(c.index() as usize).is_some_and(|b| *b != node.bound(side))
-                {
-                    moved.push(c.index());
-                }
-            }
-        }
-        moved
+        let runs = self.nodes.par_chunks(PASS_RUN).zip(self.parents.par_chunks(PASS_RUN));
+        let parts: Vec<Vec<u32>> = runs
+            .map(|(nodes, parents)| {
+                let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
+                let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
+                let moved = children.filter(|(c, b)| {
+                    c.is_leaf() && bounds.get(c.index() as usize).is_some_and(|new| new != b)
+                });
+                moved.map(|(c, _)| c.index()).collect()
+            })
+            .collect();
+        parts.concat()
     }
 
     /// The per-leaf path: each `(id, bound)` of `moved` updated on its own,
