@@ -38,13 +38,7 @@ impl<B: Bound> Leaves<'_, B> {
     /// Every leaf in an internal node, with its bound, in node order: a
     /// sequential read of the nodes.
     pub(crate) fn in_node_order(&self) -> impl Iterator<Item = (u32, B)> + '_ {
-        self.nodes
-            .iter()
-            .zip(self.parents)
-            .filter(|(_, p)| **p != NONE)
-            .flat_map(|(node, _)| node.child.into_iter().zip(node.bounds()))
-            .filter(|(c, _)| c.is_leaf())
-            .map(|(c, b)| (c.index(), b))
+        in_run(self.nodes, self.parents).map(|(c, b)| (c.index(), b))
     }
 
     /// Asks for the node that holds leaf `id`'s bound, to be read soon:
@@ -74,4 +68,15 @@ impl<B: Bound> Leaves<'_, B> {
             self.prefetch(later);
         }
     }
+}
+
+/// The leaves hanging from a run of internal `nodes` (with their
+/// `parents`, free nodes skipped), with their bounds, in node order.
+pub(crate) fn in_run<'a, B: Bound>(
+    nodes: &'a [Node<B>],
+    parents: &'a [u32],
+) -> impl Iterator<Item = (Ref, B)> + 'a {
+    let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
+    let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
+    children.filter(|(c, _)| c.is_leaf())
 }

@@ -3,7 +3,8 @@
 
 use rayon::prelude::*;
 
-use crate::node::{NONE, Ref, Slot};
+use crate::leaves::in_run;
+use crate::node::{Ref, Slot};
 use crate::tuning::{PASS_RUN, REMOVE_AHEAD, SIBLINGS_A_TASK};
 use crate::update::UpdateStats;
 use crate::{Bound, Move, Tree};
@@ -20,11 +21,8 @@ impl<B: Bound> Tree<B> {
         let runs = self.nodes.par_chunks(PASS_RUN).zip(self.parents.par_chunks(PASS_RUN));
         let parts: Vec<Vec<u32>> = runs
             .map(|(nodes, parents)| {
-                let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
-                let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
-                let moved = children.filter(|(c, b)| {
-                    c.is_leaf() && bounds.get(c.index() as usize).is_some_and(|new| new != b)
-                });
+                let moved = in_run(nodes, parents)
+                    .filter(|(c, b)| bounds.get(c.index() as usize).is_some_and(|new| new != b));
                 moved.map(|(c, _)| c.index()).collect()
             })
             .collect();

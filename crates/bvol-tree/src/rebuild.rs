@@ -8,6 +8,7 @@ use rayon::prelude::*;
 use crate::build::Atom;
 use crate::check::{check_bound, check_id};
 use crate::error::TreeError;
+use crate::leaves::in_run;
 use crate::morton::{Clusters, build_morton};
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{PASS_RUN, PREFETCH_AHEAD};
@@ -125,7 +126,7 @@ impl<B: Bound> Tree<B> {
         let runs = || self.nodes.par_chunks(size).zip(self.parents.par_chunks(size));
         let counts: Vec<usize> = match one_thread() {
             true => vec![self.len],
-            false => runs().map(|run| leaves(run).count()).collect(),
+            false => runs().map(|(nodes, parents)| in_run(nodes, parents).count()).collect(),
         };
         let n = counts.iter().sum();
         let mut atoms = Vec::with_capacity(n);
@@ -138,8 +139,8 @@ impl<B: Bound> Tree<B> {
         }
         let written: usize = runs()
             .zip(pieces)
-            .map(|(run, piece)| {
-                let atoms = leaves(run).map(|(c, b)| Atom::new(c, b));
+            .map(|((nodes, parents), piece)| {
+                let atoms = in_run(nodes, parents).map(|(c, b)| Atom::new(c, b));
                 piece.iter_mut().zip(atoms).map(|(p, a)| p.write(a)).count()
             })
             .sum();
@@ -192,13 +193,9 @@ impl<B: Bound> Tree<B> {
         // id from the old nodes instead, the bounds would come scattered,
         // and a fresh node array would fault its pages in.
         let mut held = Vec::with_capacity(self.len);
-        for (node, &parent) in self.nodes.iter().zip(&self.parents) {
-            for (c, bound) in node.child.into_iter().zip(node.bounds()) {
-                if parent != NONE && c.is_leaf() {
-                    self.leaf_parents[c.index() as usize] = held.len() as u32;
-                    held.push(bound);
-                }
-            }
+        for (c, bound) in in_run(&self.nodes, &self.parents) {
+            self.leaf_parents[c.index() as usize] = held.len() as u32;
+            held.push(bound);
         }
         self.preorder_arrays(topology.len());
         for (x, &child) in topology.iter().enumerate() {
@@ -301,16 +298,6 @@ fn shared(links: &mut [u32]) -> &[AtomicU32] {
     // above) its alignment; `links` is borrowed mutably for as long as the
     // view, so no access but the view's atomic ones can race.
     unsafe { std::slice::from_raw_parts(links.as_mut_ptr().cast::<AtomicU32>(), links.len()) }
-}
-
-/// The leaves among the children of a run of `nodes` (with their
-/// `parents`, free nodes skipped), with their bounds, in node order.
-fn leaves<'a, B: Bound>(
-    (nodes, parents): (&'a [Node<B>], &'a [u32]),
-) -> impl Iterator<Item = (Ref, B)> + 'a {
-    let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
-    let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
-    children.filter(|(c, _)| c.is_leaf())
 }
 
 #[cfg(test)]
