@@ -122,7 +122,7 @@ impl<B: Bound> Tree<B> {
             return vec![Atom::new(self.root, self.root_bound)];
         }
         // On one thread, one run, whose leaves are all the tree's: no count.
-        let size = if one_thread() { self.nodes.len() } else { PASS_RUN };
+        let size = if one_thread() { self.nodes.len().max(1) } else { PASS_RUN };
         let runs = || self.nodes.par_chunks(size).zip(self.parents.par_chunks(size));
         let counts: Vec<usize> = match one_thread() {
             true => vec![self.len],
@@ -333,6 +333,25 @@ mod tests {
                 Aabb::new(p, p + Vec3::ONE)
             })
             .collect()
+    }
+
+    /// A tree of no leaf or one rebuilds to itself, on one thread (one run
+    /// of nodes, of none) as on two.
+    #[test]
+    fn an_empty_or_one_leaf_tree_rebuilds_on_any_thread_count() {
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            pool.install(|| {
+                let mut empty = Tree::<Aabb>::new();
+                empty.rebuild();
+                assert!(empty.is_empty() && empty.pairs().is_empty());
+                let mut one = Tree::new();
+                one.insert(3, Aabb::new(Vec3::ZERO, Vec3::ONE)).unwrap();
+                one.rebuild();
+                assert_eq!((one.len(), one.bound(3)), (1, Some(Aabb::new(Vec3::ZERO, Vec3::ONE))));
+                one.validate().unwrap();
+            });
+        }
     }
 
     /// A load's tree (Morton-sorted clusters built by SAH) leaves a pair
