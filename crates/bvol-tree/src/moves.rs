@@ -18,8 +18,8 @@ impl<B: Bound> Tree<B> {
             let moved = bounds.get(id as usize).is_some_and(|b| *b != self.root_bound);
             return if moved { vec![id] } else { Vec::new() };
         }
-        let runs = self.nodes.par_chunks(PASS_RUN).zip(self.parents.par_chunks(PASS_RUN));
-        let parts: Vec<Vec<u32>> = runs
+        let parts: Vec<Vec<u32>> = self
+            .node_runs(PASS_RUN)
             .map(|(nodes, parents)| {
                 let moved = in_run(nodes, parents)
                     .filter(|(c, b)| bounds.get(c.index() as usize).is_some_and(|new| new != b));

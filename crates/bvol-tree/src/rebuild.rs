@@ -122,11 +122,12 @@ impl<B: Bound> Tree<B> {
             return vec![Atom::new(self.root, self.root_bound)];
         }
         // On one thread, one run, whose leaves are all the tree's: no count.
-        let size = if one_thread() { self.nodes.len().max(1) } else { PASS_RUN };
-        let runs = || self.nodes.par_chunks(size).zip(self.parents.par_chunks(size));
-        let counts: Vec<usize> = match one_thread() {
-            true => vec![self.len],
-            false => runs().map(|(nodes, parents)| in_run(nodes, parents).count()).collect(),
+        let (size, counts): (_, Vec<usize>) = match one_thread() {
+            true => (self.nodes.len().max(1), vec![self.len]),
+            false => {
+                let runs = self.node_runs(PASS_RUN);
+                (PASS_RUN, runs.map(|(nodes, parents)| in_run(nodes, parents).count()).collect())
+            }
         };
         let n = counts.iter().sum();
         let mut atoms = Vec::with_capacity(n);
@@ -137,7 +138,8 @@ impl<B: Bound> Tree<B> {
             pieces.push(piece);
             rest = tail;
         }
-        let written: usize = runs()
+        let written: usize = self
+            .node_runs(size)
             .zip(pieces)
             .map(|((nodes, parents), piece)| {
                 let atoms = in_run(nodes, parents).map(|(c, b)| Atom::new(c, b));
@@ -278,7 +280,7 @@ impl<B: Bound> Tree<B> {
         }
         // Summed by runs of nodes in parallel, and the runs' sums in order:
         // the same sum on any number of threads.
-        let runs = self.nodes.par_chunks(PASS_RUN).zip(self.parents.par_chunks(PASS_RUN));
+        let runs = self.node_runs(PASS_RUN);
         let sums: Vec<f64> = runs
             .map(|(nodes, parents)| {
                 let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);

@@ -2,6 +2,8 @@
 
 use std::collections::BTreeSet;
 
+use rayon::prelude::*;
+
 use crate::Bound;
 use crate::changes::Changes;
 use crate::check::{check_bound, check_id};
@@ -174,6 +176,16 @@ impl<B: Bound> Tree<B> {
             root_bound: self.root_bound,
             len: self.len,
         }
+    }
+
+    /// The internal nodes with their parent links, in runs of `size` nodes
+    /// for rayon tasks: a pass whose runs are fixed, and so whose result
+    /// does not depend on the number of threads.
+    pub(crate) fn node_runs(
+        &self,
+        size: usize,
+    ) -> impl IndexedParallelIterator<Item = (&[Node<B>], &[u32])> + '_ {
+        self.nodes.par_chunks(size).zip(self.parents.par_chunks(size))
     }
 
     /// The bound of the whole tree, `None` when empty.
