@@ -19,8 +19,8 @@ impl<B: Bound> Tree<B> {
     ///
     /// Runs over the nodes children before parents: in parallel subtrees
     /// when the nodes are laid out in preorder (after a whole build or a
-    /// layout), in parallel blocks of the node array when few nodes come
-    /// before a child of theirs ([`Tree::refit_blocks`]), else along a
+    /// layout), in parallel blocks of the node array when few nodes have a
+    /// child in another block ([`Tree::refit_blocks`]), else along a
     /// preorder walk.
     pub(crate) fn refit_pass(
         &mut self,
@@ -136,12 +136,14 @@ impl<B: Bound> Tree<B> {
     /// removes or partial rebuilds), most of them still after their
     /// parents: over the node array from last to first, as a tree in
     /// preorder is, in parallel blocks of it. After a build every child
-    /// comes after its parent, and a removal keeps that; a node placed since
-    /// (an insertion takes any free slot) may come before a child of its. A
-    /// node whose internal child was not refit before it in its block (placed
-    /// before it, or in another block) keeps that child's old bound in the
-    /// pass, and is refit again after it with its ancestors. Returns how
-    /// many nodes were late so.
+    /// comes after its parent in the array, and a removal keeps that; a node
+    /// placed since (an insertion takes any free slot) may come after a
+    /// child of its. Such a child, refit later in the pass, hands its new
+    /// bound up to the ancestors refit before it in its block
+    /// ([`climb`]). A node with an internal child in another block (refit
+    /// on another task) keeps that child's old bound in the pass, and is
+    /// refit again after it with its ancestors: it is late. Returns how
+    /// many nodes were late.
     fn refit_blocks(&mut self, bounds: Option<&[B]>, found: &mut Refit) -> usize {
         let mut late = Vec::new();
         refit_block(&mut self.nodes, 0, &self.parents, bounds, found, &mut late);
@@ -194,7 +196,8 @@ impl<B: Bound> Tree<B> {
     /// reinserted since its last layout, as a trickle of teleports leaves
     /// it): in reverse of a preorder walk, one task, where
     /// [`Tree::refit_blocks`] would refit many nodes again. Returns how many
-    /// nodes come before one of their children.
+    /// nodes come after one of their children in the array: how far the
+    /// layout strayed from preorder, counted as late.
     fn refit_walked(&mut self, bounds: Option<&[B]>, found: &mut Refit) -> usize {
         let nodes = &mut self.nodes;
         let mut order = vec![0; nodes.len() - self.free_count];
@@ -393,8 +396,8 @@ fn refit_run<B: Bound>(
 
 /// Refits the nodes `block` (from `lo` in the node array; `parents` for
 /// all of it), last to first, listing in `late` the nodes that kept an
-/// internal child's old bound because the child was not refit before them
-/// here. Long blocks split in two halves, refit on two rayon tasks
+/// internal child's old bound because the child lies in another block.
+/// Long blocks split in two halves, refit on two rayon tasks
 /// ([`Refit::join`]; the late nodes too, second half's first).
 fn refit_block<B: Bound>(
     block: &mut [Node<B>],
@@ -418,6 +421,7 @@ fn refit_block<B: Bound>(
         return;
     }
     let mut inner = 0.0;
+    let within = lo..lo + block.len();
     for k in (0..block.len()).rev() {
         ask_ahead(block, k, bounds);
         let x = lo + k;
@@ -426,19 +430,46 @@ fn refit_block<B: Bound>(
         }
         let (head, tail) = block.split_at_mut(k + 1);
         let node = &mut head[k];
-        // An internal child refit before it in this block lies after it.
-        let refit = |c: Ref| tail.get((c.index() as usize).wrapping_sub(x + 1));
-        let ready = |c: Ref| !c.is_node() || refit(c).is_some();
-        if !(ready(node.child[0]) && ready(node.child[1])) {
+        // A child in another block is refit on another task.
+        let here = |c: Ref| !c.is_node() || within.contains(&(c.index() as usize));
+        if !(here(node.child[0]) && here(node.child[1])) {
             late.push(x as u32);
         }
-        // An internal child not refit yet is given as neither: its side
-        // keeps its bound.
+        // An internal child refit before it in this block lies after it.
+        // One not refit yet is given as neither: its side keeps its bound
+        // until the child is refit and climbs back here.
+        let refit = |c: Ref| tail.get((c.index() as usize).wrapping_sub(x + 1));
         let child = |c: Ref| if c.is_node() { refit(c).map(Node::pair) } else { None };
         let children = [child(node.child[0]), child(node.child[1])];
         inner += refit_node(node, children, bounds, found);
+        inner += climb(block, lo, k, parents);
     }
     found.inner += inner;
+}
+
+/// Hands the bound of node `lo + k`, just refit, to its ancestors in
+/// `block` that this pass refit before it (those after it in the array, as
+/// a node an insertion placed after its new sibling), up to the first that
+/// it did not: that one is refit later in the pass, from its children as
+/// they stand then. Only the child's side of each is set: a leaf side's
+/// move was recorded when the node was refit. Returns the change in the
+/// internal children's summed area.
+fn climb<B: Bound>(block: &mut [Node<B>], lo: usize, k: usize, parents: &[u32]) -> f64 {
+    let mut inner = 0.0;
+    let mut y = k;
+    // `ROOT` and `NONE` fall past the block.
+    while let Some(p) = (parents[lo + y] as usize).checked_sub(lo)
+        && p > k
+        && p < block.len()
+    {
+        let merged = block[y].merged();
+        let parent = &mut block[p];
+        let side = parent.side_of(Ref::node((lo + y) as u32));
+        inner += merged.cost() - parent.bound(side).cost();
+        parent.set_bound(side, merged);
+        y = p;
+    }
+    inner
 }
 
 /// Before refitting `nodes[k]` in a pass from last to first, asks for a
@@ -611,7 +642,7 @@ mod tests {
         let config = Config { drift: f64::INFINITY, ..Config::default() };
         let mut tree = Tree::build(config, (0..).zip(boxes.iter().copied())).unwrap();
         let (mut blocks, mut layouts, mut gained, mut seed) = (0, 0, 0, 1u64);
-        for frame in 0..40 {
+        for frame in 0..80 {
             // Every box drifts; one in a hundred lands anywhere in the grid.
             for b in &mut boxes {
                 *b = Aabb::new(b.min + 0.01, b.max + 0.01);
@@ -633,9 +664,10 @@ mod tests {
             assert!(tree.late * WALK_LATE <= 2 * n, "frame {frame}: {} nodes late", tree.late);
         }
         assert!(blocks >= 10 && layouts >= 2, "{blocks} refits in blocks, {layouts} layouts");
-        // Most reinsertions take a free node after their new parent (taking
-        // the free list's first, about 85% came before a child of theirs).
+        // Most reinsertions take a free node after their new parent, in the
+        // block of their new sibling: about one in ten had a child in
+        // another block. Taking the free list's first, seven in ten did.
         let reinserted = blocks * (n / 100);
-        assert!(gained * 2 < reinserted, "{gained} late after {reinserted} reinsertions");
+        assert!(gained * 4 < reinserted, "{gained} late after {reinserted} reinsertions");
     }
 }

@@ -86,9 +86,10 @@ pub struct Tree<B: Bound> {
     pub(crate) reshaped: bool,
     /// Refits in a row through which the shape held.
     pub(crate) held: u32,
-    /// How many nodes the last refit out of preorder found late: placed
-    /// before a child of theirs (or, refitting in blocks, at a block's
-    /// edge). How far the layout has strayed from preorder.
+    /// How many nodes the last refit out of preorder found late: refitting
+    /// in blocks, those with a child in another block, refit again after
+    /// the pass; along a walk, those after a child of theirs in the array.
+    /// How far the layout has strayed from preorder.
     pub(crate) late: usize,
     /// How many more nodes the last refit out of preorder found late than
     /// the one before it: a few a frame piled up over frames, or many at

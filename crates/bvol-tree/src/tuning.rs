@@ -67,10 +67,10 @@ pub(crate) const NODES_AHEAD: usize = 64;
 pub(crate) const PAIRS_AHEAD: usize = 256;
 
 /// A tree out of preorder whose last refit found more than one node in
-/// this many before a child of its is laid out in preorder again, when
-/// they piled up over frames, or else refit along a preorder walk: refit
-/// in memory order, so many nodes would be refit again, with their
-/// ancestors, that the walk costs less.
+/// this many late (see `Tree::refit_blocks`) is laid out in preorder
+/// again, when they piled up over frames, or else refit along a preorder
+/// walk: refit in memory order, so many nodes would be refit again, with
+/// their ancestors, that the walk costs less.
 pub(crate) const WALK_LATE: usize = 64;
 
 /// A tree out of preorder whose shape held through this many refits in a
