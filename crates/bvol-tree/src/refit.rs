@@ -141,55 +141,15 @@ impl<B: Bound> Tree<B> {
     /// child of its. Such a child, refit later in the pass, hands its new
     /// bound up to the ancestors refit before it in its block
     /// ([`climb`]). A node with an internal child in another block (refit
-    /// on another task) keeps that child's old bound in the pass, and is
-    /// refit again after it with its ancestors: it is late. Returns how
-    /// many nodes were late.
+    /// on another task) keeps that child's old bound in the pass: it is
+    /// late, and refit again with its ancestors once the two blocks are
+    /// joined ([`settle`]). Returns how many nodes were late.
     fn refit_blocks(&mut self, bounds: Option<&[B]>, found: &mut Refit) -> usize {
         let mut late = Vec::new();
-        refit_block(&mut self.nodes, 0, &self.parents, bounds, found, &mut late);
-        if !late.is_empty() {
-            found.inner += self.refit_again(&late);
-        }
-        late.len()
-    }
-
-    /// Refits the nodes `late` and their ancestors again, children first:
-    /// marked up from each late node (to where an earlier climb went),
-    /// listed parents first from the root, and refit in reverse. Returns
-    /// the change in the internal children's summed area.
-    fn refit_again(&mut self, late: &[u32]) -> f64 {
-        let (nodes, parents) = (&mut self.nodes, &self.parents);
-        let mut marked = vec![false; nodes.len()];
-        for &first in late {
-            let mut x = first;
-            while x != ROOT && !marked[x as usize] {
-                marked[x as usize] = true;
-                x = parents[x as usize];
-            }
-        }
-        let mut order = Vec::new();
-        let mut stack = vec![self.root.index()];
-        while let Some(x) = stack.pop() {
-            order.push(x);
-            for c in nodes[x as usize].child {
-                if c.is_node() && marked[c.index() as usize] {
-                    stack.push(c.index());
-                }
-            }
-        }
-        let mut inner = 0.0;
-        for &x in order.iter().rev() {
-            for side in 0..2 {
-                let c = nodes[x as usize].child[side];
-                if c.is_node() {
-                    let merged = nodes[c.index() as usize].merged();
-                    let old = nodes[x as usize].bound(side);
-                    nodes[x as usize].set_bound(side, merged);
-                    inner += merged.cost() - old.cost();
-                }
-            }
-        }
-        inner
+        let settled = refit_block(&mut self.nodes, 0, &self.parents, bounds, found, &mut late);
+        // Every child lies in the whole array: the last join settled all.
+        debug_assert!(late.is_empty());
+        settled
     }
 
     /// The refit of a tree whose nodes are far from preorder (many leaves
@@ -398,7 +358,9 @@ fn refit_run<B: Bound>(
 /// all of it), last to first, listing in `late` the nodes that kept an
 /// internal child's old bound because the child lies in another block.
 /// Long blocks split in two halves, refit on two rayon tasks
-/// ([`Refit::join`]; the late nodes too, second half's first).
+/// ([`Refit::join`]); then the halves' late nodes whose children all lie
+/// in the block are settled ([`settle`]), second half's first, and the
+/// others listed. Returns how many late nodes were settled.
 fn refit_block<B: Bound>(
     block: &mut [Node<B>],
     lo: usize,
@@ -406,23 +368,30 @@ fn refit_block<B: Bound>(
     bounds: Option<&[B]>,
     found: &mut Refit,
     late: &mut Vec<u32>,
-) {
+) -> usize {
     if block.len() >= 2 * PARALLEL_REFIT {
         let mid = block.len() / 2;
         let (first, second) = block.split_at_mut(mid);
         let part = |block: &mut [Node<B>], lo: usize, part: &mut Refit| {
             let mut late = Vec::new();
-            refit_block(block, lo, parents, bounds, part, &mut late);
-            late
+            let settled = refit_block(block, lo, parents, bounds, part, &mut late);
+            (late, settled)
         };
         let (a, b) = found.join(|p| part(first, lo, p), |p| part(second, lo + mid, p));
-        late.extend(b);
-        late.extend(a);
-        return;
+        let mut settled = a.1 + b.1;
+        for x in b.0.into_iter().chain(a.0) {
+            let k = x as usize - lo;
+            if in_block(&block[k], lo, block.len()) {
+                found.inner += settle(block, lo, k, parents);
+                settled += 1;
+            } else {
+                late.push(x);
+            }
+        }
+        return settled;
     }
-    let mut inner = 0.0;
-    let within = lo..lo + block.len();
-    for k in (0..block.len()).rev() {
+    let (mut inner, len) = (0.0, block.len());
+    for k in (0..len).rev() {
         ask_ahead(block, k, bounds);
         let x = lo + k;
         if parents[x] == NONE {
@@ -431,8 +400,7 @@ fn refit_block<B: Bound>(
         let (head, tail) = block.split_at_mut(k + 1);
         let node = &mut head[k];
         // A child in another block is refit on another task.
-        let here = |c: Ref| !c.is_node() || within.contains(&(c.index() as usize));
-        if !(here(node.child[0]) && here(node.child[1])) {
+        if !in_block(node, lo, len) {
             late.push(x as u32);
         }
         // An internal child refit before it in this block lies after it.
@@ -442,24 +410,56 @@ fn refit_block<B: Bound>(
         let child = |c: Ref| if c.is_node() { refit(c).map(Node::pair) } else { None };
         let children = [child(node.child[0]), child(node.child[1])];
         inner += refit_node(node, children, bounds, found);
-        inner += climb(block, lo, k, parents);
+        inner += climb(block, lo, k, k + 1, parents);
     }
     found.inner += inner;
+    0
 }
 
-/// Hands the bound of node `lo + k`, just refit, to its ancestors in
-/// `block` that this pass refit before it (those after it in the array, as
-/// a node an insertion placed after its new sibling), up to the first that
-/// it did not: that one is refit later in the pass, from its children as
-/// they stand then. Only the child's side of each is set: a leaf side's
+/// Whether every internal child of `node` lies in the block of `len` nodes
+/// from `lo`.
+fn in_block<B: Bound>(node: &Node<B>, lo: usize, len: usize) -> bool {
+    let here = |c: Ref| !c.is_node() || (lo..lo + len).contains(&(c.index() as usize));
+    here(node.child[0]) && here(node.child[1])
+}
+
+/// Refits node `lo + k` of `block`, late, from its internal children, all
+/// refit by now in the block, and hands its bound up to its ancestors in
+/// the block, all refit by now too. Returns the change in the internal
+/// children's summed area.
+fn settle<B: Bound>(block: &mut [Node<B>], lo: usize, k: usize, parents: &[u32]) -> f64 {
+    let mut inner = 0.0;
+    for side in 0..2 {
+        let c = block[k].child[side];
+        if c.is_node() {
+            let merged = block[c.index() as usize - lo].merged();
+            inner += merged.cost() - block[k].bound(side).cost();
+            block[k].set_bound(side, merged);
+        }
+    }
+    inner + climb(block, lo, k, 0, parents)
+}
+
+/// Hands the bound of node `lo + k`, just refit, to its ancestors at
+/// `first` or after in `block`, up to the first that is not. In the pass,
+/// `first` is `k + 1`: the ancestors the pass refit before it (those after
+/// it in the array, as a node an insertion placed after its new sibling);
+/// the first it did not reach is refit later in the pass, from its children
+/// as they stand then. Only the child's side of each is set: a leaf side's
 /// move was recorded when the node was refit. Returns the change in the
 /// internal children's summed area.
-fn climb<B: Bound>(block: &mut [Node<B>], lo: usize, k: usize, parents: &[u32]) -> f64 {
+fn climb<B: Bound>(
+    block: &mut [Node<B>],
+    lo: usize,
+    k: usize,
+    first: usize,
+    parents: &[u32],
+) -> f64 {
     let mut inner = 0.0;
     let mut y = k;
     // `ROOT` and `NONE` fall past the block.
     while let Some(p) = (parents[lo + y] as usize).checked_sub(lo)
-        && p > k
+        && p >= first
         && p < block.len()
     {
         let merged = block[y].merged();
