@@ -410,7 +410,10 @@ fn refit_block<B: Bound>(
         let child = |c: Ref| if c.is_node() { refit(c).map(Node::pair) } else { None };
         let children = [child(node.child[0]), child(node.child[1])];
         inner += refit_node(node, children, bounds, found);
-        inner += climb(block, lo, k, k + 1, parents);
+        // Mostly a node's parent comes before it, and there is no climb.
+        if parents[x] as usize > x {
+            inner += climb(block, lo, k, k + 1, parents);
+        }
     }
     found.inner += inner;
     0
