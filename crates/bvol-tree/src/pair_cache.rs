@@ -83,7 +83,7 @@ impl PairCache {
             // Independent: the queries read the tree, the drop the old pairs.
             rayon::join(
                 || tree.changed_pairs(&mut self.fresh),
-                || changes.drop_touched(&mut self.pairs, |_| {}),
+                || changes.swap_out_touched(&mut self.pairs),
             );
             let kept = self.pairs.len();
             self.pairs.extend_from_slice(&self.fresh);
