@@ -65,6 +65,12 @@ impl Changes {
         (word & 1) | u64::from(self.all)
     }
 
+    /// 1 when either id of `pair` changed, else 0, as [`Changes::bit`].
+    #[inline]
+    fn touches(&self, (a, b): (u32, u32)) -> u64 {
+        self.bit(a) | self.bit(b)
+    }
+
     /// Drops from `pairs` those that touch a changed id, keeping the others
     /// in order, and hands each dropped pair to `dropped`.
     ///
@@ -80,14 +86,13 @@ impl Changes {
         if !self.all && self.ids.is_empty() {
             return; // nothing changed: every pair stays (a pile at rest)
         }
-        let bit = |id: u32| self.bit(id);
         let mut kept = 0;
         for start in (0..pairs.len()).step_by(LINE) {
             let end = (start + LINE).min(pairs.len());
             if let Some(ahead) = pairs.get(start + PAIRS_AHEAD) {
                 prefetch(ahead);
             }
-            let touched = pairs[start..end].iter().fold(0, |t, &(a, b)| t | bit(a) | bit(b));
+            let touched = pairs[start..end].iter().fold(0, |t, &pair| t | self.touches(pair));
             if touched == 0 {
                 if kept < start {
                     pairs.copy_within(start..end, kept);
@@ -97,7 +102,7 @@ impl Changes {
             }
             for i in start..end {
                 let pair = pairs[i];
-                let touched = bit(pair.0) | bit(pair.1);
+                let touched = self.touches(pair);
                 pairs[kept] = pair;
                 kept += (touched ^ 1) as usize;
                 if touched != 0 {
@@ -118,22 +123,21 @@ impl Changes {
         if !self.all && self.ids.is_empty() {
             return;
         }
-        let bit = |(a, b): (u32, u32)| self.bit(a) | self.bit(b);
         let (mut i, mut end) = (0, pairs.len());
         while i < end {
             let line = (i + LINE).min(end);
             if let Some(ahead) = pairs.get(i + PAIRS_AHEAD) {
                 prefetch(ahead);
             }
-            if pairs[i..line].iter().fold(0, |t, &pair| t | bit(pair)) == 0 {
+            if pairs[i..line].iter().fold(0, |t, &pair| t | self.touches(pair)) == 0 {
                 i = line;
                 continue;
             }
             while i < line && i < end {
-                if bit(pairs[i]) != 0 {
+                if self.touches(pairs[i]) != 0 {
                     // The last pair past `i` not touched takes its place;
                     // when there is none, `end` comes down to `i`.
-                    while end > i + 1 && bit(pairs[end - 1]) != 0 {
+                    while end > i + 1 && self.touches(pairs[end - 1]) != 0 {
                         end -= 1;
                     }
                     end -= 1;

@@ -436,11 +436,18 @@ fn settle<B: Bound>(block: &mut [Node<B>], lo: usize, k: usize, parents: &[u32])
         let c = block[k].child[side];
         if c.is_node() {
             let merged = block[c.index() as usize - lo].merged();
-            inner += merged.cost() - block[k].bound(side).cost();
-            block[k].set_bound(side, merged);
+            inner += set_side(&mut block[k], side, merged);
         }
     }
     inner + climb(block, lo, k, 0, parents)
+}
+
+/// Sets `node`'s child bound on `side` to `bound`. Returns the change in
+/// its area.
+fn set_side<B: Bound>(node: &mut Node<B>, side: usize, bound: B) -> f64 {
+    let change = bound.cost() - node.bound(side).cost();
+    node.set_bound(side, bound);
+    change
 }
 
 /// Hands the bound of node `lo + k`, just refit, to its ancestors at
@@ -466,10 +473,8 @@ fn climb<B: Bound>(
         && p < block.len()
     {
         let merged = block[y].merged();
-        let parent = &mut block[p];
-        let side = parent.side_of(Ref::node((lo + y) as u32));
-        inner += merged.cost() - parent.bound(side).cost();
-        parent.set_bound(side, merged);
+        let side = block[p].side_of(Ref::node((lo + y) as u32));
+        inner += set_side(&mut block[p], side, merged);
         y = p;
     }
     inner
