@@ -1,6 +1,6 @@
-//! The broadphase side by side, frame by frame: each frame of a scene goes
-//! to every method in turn (the order rotating from frame to frame), so that
-//! a drift in the machine's speed, which on a shared host moves timings by
+//! The broadphase side by side, block by block: a scene's frames go to every
+//! method in short blocks in turn (`interleave::interleaved`), so that a
+//! drift in the machine's speed, which on a shared host moves timings by
 //! half over minutes, falls on all methods alike; and prints each method's
 //! mean frame and its ratio to parry3d's. Pair sets are checked equal in
 //! every frame, and against brute force on a smaller world first.

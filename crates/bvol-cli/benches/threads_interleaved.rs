@@ -1,13 +1,19 @@
-//! One thread against several, frame by frame: each frame of a scene goes
-//! to bvol on a one-thread pool and on a pool of `BVOL_BENCH_THREADS` in
-//! turn (the order alternating from frame to frame), as a user's frame runs
-//! (the tree's update, then its pairs brought up to date in a `PairCache`),
-//! so that a drift in the machine's speed falls on both alike; and prints
-//! each one's median and mean frame, the speedup of the median, and the
-//! median of the frames' own speedups (each frame's one-thread time over its
-//! time on the pool, taken a moment apart: a slow minute of the host slows
-//! both). The pair sets are checked equal in every frame, and against brute
-//! force and the peers on a smaller world first.
+//! One thread against several, block by block: the frames of a scene go to
+//! bvol on a one-thread pool and on a pool of `BVOL_BENCH_THREADS` in
+//! blocks in turn ([`interleaved`]), as a user's frame runs (the tree's
+//! update, then its pairs brought up to date in a `PairCache`), so that a
+//! drift in the machine's speed falls on both alike; and prints each one's
+//! median and mean frame, the speedup of the median, and the median of the
+//! frames' own speedups (each frame's one-thread time over its time on the
+//! pool, taken a block apart: a slow minute of the host slows both). The
+//! pair sets are checked equal in every frame, and against brute force and
+//! the peers on a smaller world first.
+//!
+//! On a shared host the second core's share moves from minute to minute,
+//! so after each scene a fixed load of arithmetic that splits perfectly
+//! goes to the same kinds of pools in the same way ([`Ceiling`]); its
+//! speedup, printed beside the scene's (`compute`), is what the host gave
+//! two threads when that scene ran.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -17,34 +23,105 @@
 mod broadphases;
 mod interleave;
 
+use std::hint::black_box;
+use std::time::Instant;
+
 use broadphases::{Broadphase, BvolTree, check_agreement};
-use interleave::{env, interleaved, scenes};
+use interleave::{BLOCK, env, interleaved, scenes};
+use rayon::prelude::*;
 
 fn main() {
     let n = env("BVOL_BENCH_N", 100_000);
     let frames = env("BVOL_BENCH_FRAMES", 30);
     let threads = env("BVOL_BENCH_THREADS", 2);
     println!(
-        "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\tframe_speedup"
+        "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\t\
+         frame_speedup\tcompute"
     );
+    let ceiling = Ceiling::new(threads);
     for kind in scenes() {
         check_agreement(kind, n.min(20_000));
         let mut methods: Vec<Box<dyn Broadphase>> =
             vec![Box::new(BvolTree::new(true, 1)), Box::new(BvolTree::new(true, threads))];
         let timed = interleaved(kind, n, frames, &mut methods);
+        let compute = ceiling.speedup();
         let ones = &timed.frame_ms[0];
         for (t, ms) in [1, threads].into_iter().zip(&timed.frame_ms) {
             let mean = ms.iter().sum::<f64>() / ms.len() as f64;
-            let ratios: Vec<f64> = ones.iter().zip(ms).map(|(one, this)| one / this).collect();
             println!(
-                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}",
+                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}",
                 timed.pairs,
                 median(ms),
                 median(ones) / median(ms),
-                median(&ratios)
+                frame_speedup(ones, ms),
+                if t == 1 { 1.0 } else { compute },
             );
         }
     }
+}
+
+/// The median of the frames' own speedups: each one-thread frame's time
+/// over its time on the pool.
+fn frame_speedup(ones: &[f64], ms: &[f64]) -> f64 {
+    let ratios: Vec<f64> = ones.iter().zip(ms).map(|(one, this)| one / this).collect();
+    median(&ratios)
+}
+
+/// Tasks the [`Ceiling`]'s load is split into, as the tree's passes
+/// split theirs.
+const TASKS: usize = 64;
+
+/// Steps of arithmetic in one task of the [`Ceiling`]'s load.
+const STEPS: u64 = 20_000;
+
+/// Rounds of blocks a [`Ceiling`] times its load in.
+const ROUNDS: usize = 6;
+
+/// A fixed load of arithmetic in equal tasks with nothing shared, timed on
+/// a one-thread pool and on the benchmark's in blocks in turn, as the
+/// frames are: the speedup the host gives two threads of work that loses
+/// nothing to its split.
+struct Ceiling([rayon::ThreadPool; 2]);
+
+impl Ceiling {
+    fn new(threads: usize) -> Self {
+        let pool = |t| rayon::ThreadPoolBuilder::new().num_threads(t).build().unwrap();
+        Ceiling([pool(1), pool(threads)])
+    }
+
+    /// The load's frame speedup on the benchmark's pool over [`ROUNDS`]
+    /// rounds of a block on each pool, each block's first run untimed.
+    fn speedup(&self) -> f64 {
+        let mut ms = [Vec::new(), Vec::new()];
+        for round in 0..ROUNDS {
+            for r in 0..2 {
+                let p = (r + round) % 2;
+                for run in 0..BLOCK {
+                    let started = Instant::now();
+                    black_box(self.0[p].install(load));
+                    if run > 0 {
+                        ms[p].push(started.elapsed().as_secs_f64() * 1e3);
+                    }
+                }
+            }
+        }
+        frame_speedup(&ms[0], &ms[1])
+    }
+}
+
+/// The [`Ceiling`]'s load: [`TASKS`] chains of [`STEPS`] steps of [`mix`].
+fn load() -> u64 {
+    let task = |k: usize| (0..STEPS).fold(k as u64, |x, _| mix(x));
+    (0..TASKS).into_par_iter().with_max_len(1).map(task).reduce(|| 0, u64::wrapping_add)
+}
+
+/// A step of splitmix64 (Steele et al., "Fast splittable pseudorandom
+/// number generators", 2014): arithmetic only, no memory.
+fn mix(x: u64) -> u64 {
+    let mut z = x.wrapping_add(0x9e37_79b9_7f4a_7c15);
+    z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+    z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+    z ^ (z >> 31)
 }
 
 /// The median of `values` (the mean of the middle two when their number is
