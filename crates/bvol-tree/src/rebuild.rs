@@ -109,7 +109,9 @@ impl<B: Bound> Tree<B> {
 
     /// Rebuilds the whole tree, its clusters finished as `finish` says.
     pub(crate) fn rebuild_with(&mut self, finish: Clusters) {
+        let t = std::time::Instant::now();
         let mut atoms = self.leaf_atoms();
+        eprintln!("RB_ATOMS {:.3}", t.elapsed().as_secs_f64() * 1e3);
         self.install(&mut atoms, finish);
     }
 
@@ -124,10 +126,7 @@ impl<B: Bound> Tree<B> {
         // On one thread, one run, whose leaves are all the tree's: no count.
         let (size, counts): (_, Vec<usize>) = match one_thread() {
             true => (self.nodes.len().max(1), vec![self.len]),
-            false => {
-                let runs = self.node_runs(PASS_RUN);
-                (PASS_RUN, runs.map(|(nodes, parents)| in_run(nodes, parents).count()).collect())
-            }
+            false => (PASS_RUN, self.leaves_a_run()),
         };
         let n = counts.iter().sum();
         let mut atoms = Vec::with_capacity(n);
@@ -152,6 +151,27 @@ impl<B: Bound> Tree<B> {
         // them.
         unsafe { atoms.set_len(n) };
         atoms
+    }
+
+    /// How many leaves have their parent in each run of [`PASS_RUN`] nodes,
+    /// counted from the leaves' parent links on rayon tasks: four bytes a
+    /// leaf, where counting them in the nodes read every node once more.
+    fn leaves_a_run(&self) -> Vec<usize> {
+        let nodes = self.nodes.len();
+        let runs = nodes.div_ceil(PASS_RUN);
+        let count = |links: &[u32]| {
+            let mut counts = vec![0; runs];
+            // Ids not in the tree have no parent node (`NONE`).
+            for &p in links.iter().filter(|&&p| (p as usize) < nodes) {
+                counts[p as usize / PASS_RUN] += 1;
+            }
+            counts
+        };
+        let add = |mut a: Vec<usize>, b: Vec<usize>| {
+            a.iter_mut().zip(b).for_each(|(a, b)| *a += b);
+            a
+        };
+        self.leaf_parents.par_chunks(PASS_RUN).map(count).reduce(|| vec![0; runs], add)
     }
 
     /// Replaces every node by a fresh build over `atoms` (all of them leaves),
@@ -335,6 +355,30 @@ mod tests {
                 Aabb::new(p, p + Vec3::ONE)
             })
             .collect()
+    }
+
+    /// The leaves a rebuild gathers are the tree's, each once with its
+    /// bound, and in the same order on two threads (runs counted from the
+    /// parent links) as on one: with free nodes among the runs, and ids
+    /// missing.
+    #[test]
+    fn leaf_atoms_are_the_same_on_one_thread_and_two() {
+        let mut tree = Tree::from_bounds(&boxes(12_000, false)).unwrap();
+        for id in (0..12_000).step_by(7) {
+            tree.remove(id).unwrap();
+        }
+        assert!(tree.free_count > 0 && tree.nodes.len() > 2 * PASS_RUN);
+        let gather = |threads| {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let atoms = pool.install(|| tree.leaf_atoms());
+            atoms.iter().map(|a| (a.r.index(), a.bound)).collect::<Vec<_>>()
+        };
+        let one = gather(1);
+        assert_eq!(gather(2), one);
+        let mut got = one;
+        got.sort_unstable_by_key(|a| a.0);
+        let want: Vec<_> = tree.ids().map(|id| (id, tree.bound(id).unwrap())).collect();
+        assert_eq!(got, want);
     }
 
     /// A tree of no leaf or one rebuilds to itself, on one thread (one run
