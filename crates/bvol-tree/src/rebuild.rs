@@ -109,9 +109,7 @@ impl<B: Bound> Tree<B> {
 
     /// Rebuilds the whole tree, its clusters finished as `finish` says.
     pub(crate) fn rebuild_with(&mut self, finish: Clusters) {
-        let t = std::time::Instant::now();
         let mut atoms = self.leaf_atoms();
-        eprintln!("RB_ATOMS {:.3}", t.elapsed().as_secs_f64() * 1e3);
         self.install(&mut atoms, finish);
     }
 
