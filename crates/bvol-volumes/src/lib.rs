@@ -25,6 +25,9 @@
 //! ```
 
 #![warn(missing_docs)]
+// A library prints nothing: its callers own stdout and stderr (and a
+// scratch timer left in would otherwise go unnoticed).
+#![warn(clippy::print_stdout, clippy::print_stderr)]
 
 mod aabb;
 pub mod directions;
