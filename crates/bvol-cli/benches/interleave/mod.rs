@@ -48,11 +48,11 @@ pub struct Timed {
 /// other methods ran wakes its threads in it.
 ///
 /// Frame by frame, a pool's frame paid for the others': on a two-core
-/// virtual machine a load of arithmetic that splits perfectly ran 1.0-1.7x
-/// as fast on two threads as on one when each run went to a pool right
-/// after another pool's (whose idle worker still held a core), and about
-/// 1.0x after a 5 ms pause (the second core, asleep, woke when the work
-/// was done); in blocks it runs 1.8-2.0x as fast.
+/// virtual machine a load of arithmetic that splits perfectly ran 1.0-1.96x
+/// (mostly 1.0-1.4x) as fast on two threads as on one when each run went to
+/// a pool right after another pool's (whose idle worker still held a core),
+/// and about 1.0x after a 5 ms pause (the second core, asleep, woke when
+/// the work was done); in blocks it runs 1.8-2.0x as fast.
 pub fn interleaved(
     kind: SceneKind,
     n: usize,
