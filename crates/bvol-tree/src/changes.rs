@@ -83,8 +83,8 @@ impl Changes {
         pairs: &mut Vec<(u32, u32)>,
         mut dropped: impl FnMut((u32, u32)),
     ) {
-        if !self.all && self.ids.is_empty() {
-            return; // nothing changed: every pair stays (a pile at rest)
+        if self.none() {
+            return; // every pair stays (a pile at rest)
         }
         let mut kept = 0;
         for start in (0..pairs.len()).step_by(LINE) {
@@ -120,7 +120,7 @@ impl Changes {
     /// moves every pair after the first gap. Read a line at a time, as
     /// there.
     pub(crate) fn swap_out_touched(&self, pairs: &mut Vec<(u32, u32)>) {
-        if !self.all && self.ids.is_empty() {
+        if self.none() {
             return;
         }
         let (mut i, mut end) = (0, pairs.len());
@@ -147,6 +147,11 @@ impl Changes {
             }
         }
         pairs.truncate(end);
+    }
+
+    /// Whether nothing changed.
+    fn none(&self) -> bool {
+        !self.all && self.ids.is_empty()
     }
 
     /// Whether few enough of `len` leaves changed that querying each costs

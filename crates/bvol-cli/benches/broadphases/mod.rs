@@ -167,6 +167,11 @@ pub fn methods(n: usize) -> Vec<Method> {
     out
 }
 
+/// The digest of a frame's pairs, in whatever order a method keeps them.
+pub fn digest_of(pairs: &[(u32, u32)]) -> PairDigest {
+    PairDigest::of_pairs(pairs.iter().copied())
+}
+
 /// Runs every method over the same first frames and insists on equal pair sets.
 pub fn check_agreement(kind: SceneKind, n: usize) {
     let mut scene = Scene::new(kind, n, 1);
@@ -176,7 +181,7 @@ pub fn check_agreement(kind: SceneKind, n: usize) {
         let mut method = make();
         let mut digest = PairDigest::default();
         for boxes in &frames {
-            digest += PairDigest::of_pairs(method.frame(boxes).iter().copied());
+            digest += digest_of(method.frame(boxes));
         }
         match reference {
             None => reference = Some((name, digest)),

@@ -8,10 +8,9 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use bvol::volumes::Aabb;
-use bvol_cli::digest::PairDigest;
 use bvol_cli::scenes::{Scene, SceneKind};
 
-use crate::broadphases::Broadphase;
+use crate::broadphases::{Broadphase, digest_of};
 
 /// Untimed frames after the first: the builds settle, buffers grow.
 const WARM: usize = 3;
@@ -67,7 +66,7 @@ pub fn interleaved(
     let mut digests = vec![Vec::with_capacity(all.len()); k];
     let (warm, timed) = all.split_at(WARM + 1);
     for (i, method) in methods.iter_mut().enumerate() {
-        digests[i].extend(warm.iter().map(|boxes| digest(method.frame(boxes))));
+        digests[i].extend(warm.iter().map(|boxes| digest_of(method.frame(boxes))));
     }
     for (b, block) in timed.chunks(BLOCK).enumerate() {
         for r in 0..k {
@@ -79,7 +78,7 @@ pub fn interleaved(
                 if f > 0 && frame_ms[i].len() < frames {
                     frame_ms[i].push(ms);
                 }
-                digests[i].push(digest(found));
+                digests[i].push(digest_of(found));
             }
         }
     }
@@ -94,7 +93,3 @@ pub fn interleaved(
 
 /// Frames a method runs in turn in [`interleaved`], the first untimed.
 pub const BLOCK: usize = 6;
-
-fn digest(pairs: &[(u32, u32)]) -> PairDigest {
-    PairDigest::of_pairs(pairs.iter().copied())
-}
