@@ -76,7 +76,45 @@ pub(crate) fn in_run<'a, B: Bound>(
     nodes: &'a [Node<B>],
     parents: &'a [u32],
 ) -> impl Iterator<Item = (Ref, B)> + 'a {
-    let in_use = nodes.iter().zip(parents).filter(|(_, p)| **p != NONE);
+    leaves_of(nodes.iter().zip(parents))
+}
+
+/// [`in_run`], asking at each node for the bounds in `all` of the leaves
+/// [`PREFETCH_AHEAD`] nodes on ([`ask_leaf_bounds`]), for a loop that
+/// reads them by id.
+pub(crate) fn in_run_asking<'a, B: Bound>(
+    nodes: &'a [Node<B>],
+    parents: &'a [u32],
+    all: &'a [B],
+) -> impl Iterator<Item = (Ref, B)> + 'a {
+    let asked = nodes.iter().enumerate().map(move |(k, node)| {
+        if let Some(ahead) = nodes.get(k + PREFETCH_AHEAD) {
+            ask_leaf_bounds(ahead, all);
+        }
+        node
+    });
+    leaves_of(asked.zip(parents))
+}
+
+/// The leaf children of the nodes in use among `nodes`, each with its
+/// parent link, with their bounds.
+fn leaves_of<'a, B: Bound>(
+    nodes: impl Iterator<Item = (&'a Node<B>, &'a u32)>,
+) -> impl Iterator<Item = (Ref, B)> {
+    let in_use = nodes.filter(|(_, p)| **p != NONE);
     let children = in_use.flat_map(|(n, _)| n.child.into_iter().zip(n.bounds()));
     children.filter(|(c, _)| c.is_leaf())
+}
+
+/// Asks for the bounds in `all` of the leaves among `node`'s children, to be
+/// read a few nodes later. An internal child asks for the first bound: no
+/// branch on which it is, which no predictor could learn.
+#[inline]
+pub(crate) fn ask_leaf_bounds<B: Bound>(node: &Node<B>, all: &[B]) {
+    for c in node.child {
+        let id = if c.is_node() { 0 } else { c.index() as usize };
+        if let Some(b) = all.get(id) {
+            bvol_volumes::prefetch(b);
+        }
+    }
 }

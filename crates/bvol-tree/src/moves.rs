@@ -3,27 +3,32 @@
 
 use rayon::prelude::*;
 
-use crate::leaves::in_run;
+use crate::leaves::{in_run, in_run_asking};
 use crate::node::{Ref, Slot};
-use crate::tuning::{PASS_RUN, REMOVE_AHEAD, SIBLINGS_A_TASK};
+use crate::tuning::{FAR_LEAVES, PASS_RUN, REMOVE_AHEAD, SIBLINGS_A_TASK};
 use crate::update::UpdateStats;
 use crate::{Bound, Move, Tree};
 
 impl<B: Bound> Tree<B> {
     /// The ids `< bounds.len()` whose bound differs from the tree's, in node
     /// order: runs of nodes on rayon tasks, their lists joined in order.
+    ///
+    /// A tree of [`FAR_LEAVES`] or more leaves asks for the user's bounds
+    /// of the leaves [`PREFETCH_AHEAD`](crate::tuning::PREFETCH_AHEAD)
+    /// nodes on, as the refit does: their ids are in the user's order, and
+    /// past the caches each read would wait on memory.
     pub(crate) fn scan(&self, bounds: &[B]) -> Vec<u32> {
         if self.root.is_leaf() {
             let id = self.root.index();
             let moved = bounds.get(id as usize).is_some_and(|b| *b != self.root_bound);
             return if moved { vec![id] } else { Vec::new() };
         }
+        let far = self.len >= FAR_LEAVES;
         let parts: Vec<Vec<u32>> = self
             .node_runs(PASS_RUN)
-            .map(|(nodes, parents)| {
-                let moved = in_run(nodes, parents)
-                    .filter(|(c, b)| bounds.get(c.index() as usize).is_some_and(|new| new != b));
-                moved.map(|(c, _)| c.index()).collect()
+            .map(|(nodes, parents)| match far {
+                true => moved_among(in_run_asking(nodes, parents, bounds), bounds),
+                false => moved_among(in_run(nodes, parents), bounds),
             })
             .collect();
         parts.concat()
@@ -118,5 +123,55 @@ impl<B: Bound> Tree<B> {
         for &x in spare.iter().rev() {
             self.free_node(x);
         }
+    }
+}
+
+/// The ids among `leaves` (with the tree's bounds) `< bounds.len()` whose
+/// bound there differs, in order.
+fn moved_among<B: Bound>(leaves: impl Iterator<Item = (Ref, B)>, bounds: &[B]) -> Vec<u32> {
+    let moved = leaves.filter(|(c, b)| bounds.get(c.index() as usize).is_some_and(|new| new != b));
+    moved.map(|(c, _)| c.index()).collect()
+}
+
+#[cfg(test)]
+mod tests {
+    use bvol_volumes::Aabb;
+    use glam::Vec3;
+
+    use super::*;
+
+    /// A scan of a tree large enough to ask for bounds ahead finds exactly
+    /// the leaves whose bound changed, by id, on one thread and two alike.
+    #[test]
+    fn a_scan_asking_ahead_finds_the_leaves_that_moved() {
+        let n = FAR_LEAVES as u32;
+        // A 512-wide grid of unit cubes; the ids spread over it by a
+        // multiplier prime to the count, so that the tree's order is not
+        // theirs.
+        let cube = |id: u32| {
+            let cell = id.wrapping_mul(40_503) % n;
+            let at = Vec3::new((cell % 512) as f32, (cell / 512) as f32, 0.0);
+            Aabb::new(at, at + Vec3::ONE)
+        };
+        let bounds: Vec<Aabb> = (0..n).map(cube).collect();
+        let tree = Tree::from_bounds(&bounds).unwrap();
+        let mut next = bounds.clone();
+        for id in (0..n).step_by(97) {
+            next[id as usize].max.x += 0.25;
+        }
+        let mut want: Vec<u32> =
+            (0..n).filter(|&id| next[id as usize] != bounds[id as usize]).collect();
+        assert_eq!(want.len(), (n as usize).div_ceil(97));
+        for threads in [1, 2] {
+            let pool = rayon::ThreadPoolBuilder::new().num_threads(threads).build().unwrap();
+            let mut found = pool.install(|| tree.scan(&next));
+            found.sort_unstable();
+            want.sort_unstable();
+            assert_eq!(found, want, "{threads} threads");
+        }
+        // Ids past the slice are left out, not read.
+        let mut short = tree.scan(&next[..1000]);
+        short.sort_unstable();
+        assert_eq!(short, want.iter().copied().filter(|&id| id < 1000).collect::<Vec<_>>());
     }
 }

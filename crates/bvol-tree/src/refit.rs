@@ -6,6 +6,7 @@
 
 use bvol_volumes::prefetch;
 
+use crate::leaves::ask_leaf_bounds;
 use crate::node::{NONE, Node, ROOT, Ref};
 use crate::tuning::{NODES_AHEAD, PARALLEL_REFIT, PREFETCH_AHEAD, SETTLED, WALK_LATE};
 use crate::{Bound, BoundPair, Tree, one_thread};
@@ -493,19 +494,6 @@ fn ask_ahead<B: Bound>(nodes: &[Node<B>], k: usize, bounds: Option<&[B]>) {
         && let Some(ahead) = k.checked_sub(PREFETCH_AHEAD)
     {
         ask_leaf_bounds(&nodes[ahead], all);
-    }
-}
-
-/// Asks for the bounds in `all` of the leaves among `node`'s children, to be
-/// read a few nodes later. An internal child asks for the first bound: no
-/// branch on which it is, which no predictor could learn.
-#[inline]
-fn ask_leaf_bounds<B: Bound>(node: &Node<B>, all: &[B]) {
-    for c in node.child {
-        let id = if c.is_node() { 0 } else { c.index() as usize };
-        if let Some(b) = all.get(id) {
-            prefetch(b);
-        }
     }
 }
 

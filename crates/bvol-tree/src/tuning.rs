@@ -43,6 +43,14 @@ pub(crate) const TRICKLE_PACE: usize = 3;
 /// for each in turn would take about half the refit.
 pub(crate) const PREFETCH_AHEAD: usize = 16;
 
+/// Leaves from which the scan for moved leaves asks for their bounds
+/// [`PREFETCH_AHEAD`] nodes early. Past the caches (a million leaves) it
+/// waits on each bound read otherwise. Below, where bounds and nodes fit
+/// them, the requests save about as much where ids fall in a random order
+/// as they cost where ids follow the tree's (a flat layer laid out row by
+/// row), which the processor's own read-ahead already serves.
+pub(crate) const FAR_LEAVES: usize = 1 << 18;
+
 /// How many leaves ahead the reinsertion asks for the parent node of the
 /// leaf it will take out: jumps land anywhere in the tree, and a few
 /// removals' time is enough for the node to arrive.
