@@ -457,8 +457,12 @@ fn set_side<B: Bound>(node: &mut Node<B>, side: usize, bound: B) -> f64 {
 /// it in the array, as a node an insertion placed after its new sibling);
 /// the first it did not reach is refit later in the pass, from its children
 /// as they stand then. Only the child's side of each is set: a leaf side's
-/// move was recorded when the node was refit. Returns the change in the
-/// internal children's summed area.
+/// move was recorded when the node was refit. The climb stops at the first
+/// ancestor that already holds the bound handed up: every node refit so far
+/// holds the merge of its children as they stand (but on the side of a
+/// child not refit yet, or late, which climbs back when it is), so nothing
+/// above that one changes either. Returns the change in the internal
+/// children's summed area.
 fn climb<B: Bound>(
     block: &mut [Node<B>],
     lo: usize,
@@ -475,6 +479,9 @@ fn climb<B: Bound>(
     {
         let merged = block[y].merged();
         let side = block[p].side_of(Ref::node((lo + y) as u32));
+        if block[p].bound(side) == merged {
+            break;
+        }
         inner += set_side(&mut block[p], side, merged);
         y = p;
     }
@@ -561,6 +568,15 @@ mod tests {
         // Every leaf moves a little: one refit of the whole tree.
         for b in &mut boxes {
             *b = Aabb::new(b.min + 0.1, b.max + 0.1);
+        }
+        assert!(tree.update(&boxes).unwrap().refit);
+        assert!(out_of_order(&tree));
+        assert_exact(&tree, &boxes);
+        // One leaf in seven moves, each a little, some growing and some
+        // shrinking: most climbs reach an ancestor whose bound stays.
+        for (i, b) in boxes.iter_mut().enumerate().filter(|(i, _)| i % 7 == 3) {
+            let d = if i % 2 == 0 { 0.2 } else { -0.2 };
+            *b = Aabb::new(b.min - d, b.max + d);
         }
         assert!(tree.update(&boxes).unwrap().refit);
         assert!(out_of_order(&tree));
