@@ -10,16 +10,18 @@
 //! (default 30, after 3 untimed); every method on one thread.
 
 mod broadphases;
+#[allow(dead_code, reason = "shared with the benchmarks that take medians, which use the rest")]
 mod interleave;
 
 use broadphases::{Broadphase, check_agreement, methods};
+use bvol_cli::scenes::SceneKind;
 use interleave::{env, interleaved, scenes};
 
 fn main() {
     let n = env("BVOL_BENCH_N", 100_000);
     let frames = env("BVOL_BENCH_FRAMES", 30);
     println!("scene\tn\tframes\tpairs_per_frame\tmethod\tmean_ms\tvs_parry3d");
-    for kind in scenes() {
+    for kind in scenes(&SceneKind::ALL) {
         check_agreement(kind, n.min(20_000));
         // Brute force and sweep-and-prune, each a second or more a frame
         // here, are left to `pairs`.

@@ -10,10 +10,13 @@
 //! the peers on a smaller world first.
 //!
 //! On a shared host the second core's share moves from minute to minute,
-//! so after each scene a fixed load of arithmetic that splits perfectly
-//! goes to the same kinds of pools in the same way ([`Ceiling`]); its
-//! speedup, printed beside the scene's (`compute`), is what the host gave
-//! two threads when that scene ran.
+//! so after each scene two fixed loads that split perfectly go to the same
+//! kinds of pools in the same way ([`Ceiling`]): arithmetic alone, and sums
+//! over an array the size of a 100 000-box tree's nodes, read from the
+//! shared cache and memory as the tree's passes read theirs. Their
+//! speedups, printed beside the scene's (`compute`, `memory`), are what the
+//! host gave two threads when that scene ran; the neighbours' traffic on a
+//! shared host slows the second far more than the first.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -27,7 +30,8 @@ use std::hint::black_box;
 use std::time::Instant;
 
 use broadphases::{Broadphase, BvolTree, check_agreement};
-use interleave::{BLOCK, env, interleaved, scenes};
+use bvol_cli::scenes::SceneKind;
+use interleave::{BLOCK, env, interleaved, median, scenes};
 use rayon::prelude::*;
 
 fn main() {
@@ -36,25 +40,27 @@ fn main() {
     let threads = env("BVOL_BENCH_THREADS", 2);
     println!(
         "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\t\
-         frame_speedup\tcompute"
+         frame_speedup\tcompute\tmemory"
     );
     let ceiling = Ceiling::new(threads);
-    for kind in scenes() {
+    for kind in scenes(&SceneKind::ALL) {
         check_agreement(kind, n.min(20_000));
         let mut methods: Vec<Box<dyn Broadphase>> =
             vec![Box::new(BvolTree::new(true, 1)), Box::new(BvolTree::new(true, threads))];
         let timed = interleaved(kind, n, frames, &mut methods);
-        let compute = ceiling.speedup();
+        let compute = ceiling.speedup(compute);
+        let memory = ceiling.speedup(|| ceiling.memory());
         let ones = &timed.frame_ms[0];
         for (t, ms) in [1, threads].into_iter().zip(&timed.frame_ms) {
             let mean = ms.iter().sum::<f64>() / ms.len() as f64;
             println!(
-                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}",
+                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}\t{:.2}",
                 timed.pairs,
                 median(ms),
                 median(ones) / median(ms),
                 frame_speedup(ones, ms),
                 if t == 1 { 1.0 } else { compute },
+                if t == 1 { 1.0 } else { memory },
             );
         }
     }
@@ -67,38 +73,46 @@ fn frame_speedup(ones: &[f64], ms: &[f64]) -> f64 {
     median(&ratios)
 }
 
-/// Tasks the [`Ceiling`]'s load is split into, as the tree's passes
-/// split theirs.
+/// Tasks each of the [`Ceiling`]'s loads is split into, as the tree's
+/// passes split theirs.
 const TASKS: usize = 64;
 
-/// Steps of arithmetic in one task of the [`Ceiling`]'s load.
+/// Steps of arithmetic in one task of the [`Ceiling`]'s arithmetic load.
 const STEPS: u64 = 20_000;
 
-/// Rounds of blocks a [`Ceiling`] times its load in.
+/// Words in the array of the [`Ceiling`]'s memory load: 8 MiB, about a
+/// 100 000-box tree's nodes, more than the private caches hold.
+const WORDS: usize = 1 << 20;
+
+/// Rounds of blocks a [`Ceiling`] times a load in.
 const ROUNDS: usize = 6;
 
-/// A fixed load of arithmetic in equal tasks with nothing shared, timed on
-/// a one-thread pool and on the benchmark's in blocks in turn, as the
-/// frames are: the speedup the host gives two threads of work that loses
-/// nothing to its split.
-struct Ceiling([rayon::ThreadPool; 2]);
+/// Fixed loads in equal tasks with nothing shared, timed on a one-thread
+/// pool and on the benchmark's in blocks in turn, as the frames are: the
+/// speedup the host gives two threads of work that loses nothing to its
+/// split, for arithmetic ([`compute`]) and for reading memory
+/// ([`Ceiling::memory`]).
+struct Ceiling {
+    pools: [rayon::ThreadPool; 2],
+    words: Vec<u64>,
+}
 
 impl Ceiling {
     fn new(threads: usize) -> Self {
         let pool = |t| rayon::ThreadPoolBuilder::new().num_threads(t).build().unwrap();
-        Ceiling([pool(1), pool(threads)])
+        Ceiling { pools: [pool(1), pool(threads)], words: (0..WORDS as u64).collect() }
     }
 
-    /// The load's frame speedup on the benchmark's pool over [`ROUNDS`]
+    /// `load`'s frame speedup on the benchmark's pool over [`ROUNDS`]
     /// rounds of a block on each pool, each block's first run untimed.
-    fn speedup(&self) -> f64 {
+    fn speedup(&self, load: impl Fn() -> u64 + Sync) -> f64 {
         let mut ms = [Vec::new(), Vec::new()];
         for round in 0..ROUNDS {
             for r in 0..2 {
                 let p = (r + round) % 2;
                 for run in 0..BLOCK {
                     let started = Instant::now();
-                    black_box(self.0[p].install(load));
+                    black_box(self.pools[p].install(&load));
                     if run > 0 {
                         ms[p].push(started.elapsed().as_secs_f64() * 1e3);
                     }
@@ -107,10 +121,16 @@ impl Ceiling {
         }
         frame_speedup(&ms[0], &ms[1])
     }
+
+    /// The memory load: the sum of the array's words, a slice a task.
+    fn memory(&self) -> u64 {
+        let slices = self.words.par_chunks(WORDS / TASKS).with_max_len(1);
+        slices.map(|s| s.iter().copied().fold(0, u64::wrapping_add)).reduce(|| 0, u64::wrapping_add)
+    }
 }
 
-/// The [`Ceiling`]'s load: [`TASKS`] chains of [`STEPS`] steps of [`mix`].
-fn load() -> u64 {
+/// The arithmetic load: [`TASKS`] chains of [`STEPS`] steps of [`mix`].
+fn compute() -> u64 {
     let task = |k: usize| (0..STEPS).fold(k as u64, |x, _| mix(x));
     (0..TASKS).into_par_iter().with_max_len(1).map(task).reduce(|| 0, u64::wrapping_add)
 }
@@ -122,13 +142,4 @@ fn mix(x: u64) -> u64 {
     z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
     z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
     z ^ (z >> 31)
-}
-
-/// The median of `values` (the mean of the middle two when their number is
-/// even).
-fn median(values: &[f64]) -> f64 {
-    let mut sorted = values.to_vec();
-    sorted.sort_by(f64::total_cmp);
-    let k = sorted.len();
-    0.5 * (sorted[(k - 1) / 2] + sorted[k / 2])
 }

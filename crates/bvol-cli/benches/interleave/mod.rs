@@ -13,7 +13,7 @@ use bvol_cli::scenes::{Scene, SceneKind};
 use crate::broadphases::{Broadphase, digest_of};
 
 /// Untimed frames after the first: the builds settle, buffers grow.
-const WARM: usize = 3;
+pub const WARM: usize = 3;
 
 /// A count from the environment variable `name`, or `default`.
 pub fn env(name: &str, default: usize) -> usize {
@@ -21,13 +21,24 @@ pub fn env(name: &str, default: usize) -> usize {
 }
 
 /// The scenes named on the command line after `--` (criterion's `--bench`
-/// flag is ignored), or all of them.
-pub fn scenes() -> Vec<SceneKind> {
+/// flag is ignored), or else `default`.
+pub fn scenes(default: &[SceneKind]) -> Vec<SceneKind> {
     let asked: Vec<String> = std::env::args().skip(1).filter(|a| !a.starts_with('-')).collect();
-    SceneKind::ALL
-        .into_iter()
-        .filter(|k| asked.is_empty() || asked.iter().any(|a| a == k.name()))
-        .collect()
+    match asked.is_empty() {
+        true => default.to_vec(),
+        false => {
+            SceneKind::ALL.into_iter().filter(|k| asked.iter().any(|a| a == k.name())).collect()
+        }
+    }
+}
+
+/// The median of `values` (the mean of the middle two when their number is
+/// even).
+pub fn median(values: &[f64]) -> f64 {
+    let mut sorted = values.to_vec();
+    sorted.sort_by(f64::total_cmp);
+    let k = sorted.len();
+    0.5 * (sorted[(k - 1) / 2] + sorted[k / 2])
 }
 
 /// What [`interleaved`] measured.
