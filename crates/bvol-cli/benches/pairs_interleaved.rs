@@ -30,7 +30,7 @@ fn main() {
             .filter(|m| !["brute-force", "sweep-and-prune"].contains(&m.0))
             .map(|(name, make)| (name, make()))
             .unzip();
-        let timed = interleaved(kind, n, frames, &mut methods);
+        let timed = interleaved(kind, n, frames, &mut methods, || {});
         let mean = |ms: &[f64]| ms.iter().sum::<f64>() / ms.len() as f64;
         let parry = names.iter().position(|&m| m == "parry3d").map(|i| mean(&timed.frame_ms[i]));
         for (name, ms) in names.iter().zip(&timed.frame_ms) {

@@ -10,13 +10,14 @@
 //! the peers on a smaller world first.
 //!
 //! On a shared host the second core's share moves from minute to minute,
-//! so after each scene two fixed loads that split perfectly go to the same
-//! kinds of pools in the same way ([`Ceiling`]): arithmetic alone, and sums
-//! over an array the size of a 100 000-box tree's nodes, read from the
-//! shared cache and memory as the tree's passes read theirs. Their
-//! speedups, printed beside the scene's (`compute`, `memory`), are what the
-//! host gave two threads when that scene ran; the neighbours' traffic on a
-//! shared host slows the second far more than the first.
+//! so between the scene's rounds of blocks two fixed loads that split
+//! perfectly go to the same kinds of pools in the same way ([`Ceiling`]):
+//! arithmetic alone, and sums over an array the size of a 100 000-box
+//! tree's nodes, read from the shared cache and memory as the tree's passes
+//! read theirs. Their speedups, printed beside the scene's (`compute`,
+//! `memory`), are what the host gave two threads while that scene ran; the
+//! neighbours' traffic on a shared host slows the second far more than the
+//! first.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -42,14 +43,13 @@ fn main() {
         "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\t\
          frame_speedup\tcompute\tmemory"
     );
-    let ceiling = Ceiling::new(threads);
+    let mut ceiling = Ceiling::new(threads);
     for kind in scenes(&SceneKind::ALL) {
         check_agreement(kind, n.min(20_000));
         let mut methods: Vec<Box<dyn Broadphase>> =
             vec![Box::new(BvolTree::new(true, 1)), Box::new(BvolTree::new(true, threads))];
-        let timed = interleaved(kind, n, frames, &mut methods);
-        let compute = ceiling.speedup(compute);
-        let memory = ceiling.speedup(|| ceiling.memory());
+        let timed = interleaved(kind, n, frames, &mut methods, || ceiling.sample());
+        let [compute, memory] = ceiling.speedups();
         let ones = &timed.frame_ms[0];
         for (t, ms) in [1, threads].into_iter().zip(&timed.frame_ms) {
             let mean = ms.iter().sum::<f64>() / ms.len() as f64;
@@ -84,49 +84,62 @@ const STEPS: u64 = 20_000;
 /// 100 000-box tree's nodes, more than the private caches hold.
 const WORDS: usize = 1 << 20;
 
-/// Rounds of blocks a [`Ceiling`] times a load in.
-const ROUNDS: usize = 6;
-
 /// Fixed loads in equal tasks with nothing shared, timed on a one-thread
 /// pool and on the benchmark's in blocks in turn, as the frames are: the
 /// speedup the host gives two threads of work that loses nothing to its
 /// split, for arithmetic ([`compute`]) and for reading memory
-/// ([`Ceiling::memory`]).
+/// ([`memory`]).
 struct Ceiling {
     pools: [rayon::ThreadPool; 2],
     words: Vec<u64>,
+    /// Each load's runs since the last [`Ceiling::speedups`], in ms, on
+    /// each pool.
+    ms: [[Vec<f64>; 2]; 2],
+    /// Samples taken: which pool goes first turns with each.
+    samples: usize,
 }
 
 impl Ceiling {
     fn new(threads: usize) -> Self {
         let pool = |t| rayon::ThreadPoolBuilder::new().num_threads(t).build().unwrap();
-        Ceiling { pools: [pool(1), pool(threads)], words: (0..WORDS as u64).collect() }
+        let words = (0..WORDS as u64).collect();
+        Ceiling { pools: [pool(1), pool(threads)], words, ms: Default::default(), samples: 0 }
     }
 
-    /// `load`'s frame speedup on the benchmark's pool over [`ROUNDS`]
-    /// rounds of a block on each pool, each block's first run untimed.
-    fn speedup(&self, load: impl Fn() -> u64 + Sync) -> f64 {
-        let mut ms = [Vec::new(), Vec::new()];
-        for round in 0..ROUNDS {
-            for r in 0..2 {
-                let p = (r + round) % 2;
+    /// Times a block of each load on each pool, each block's first run
+    /// untimed.
+    fn sample(&mut self) {
+        for r in 0..2 {
+            let p = (r + self.samples) % 2;
+            for (load, ms) in self.ms.iter_mut().enumerate() {
                 for run in 0..BLOCK {
                     let started = Instant::now();
-                    black_box(self.pools[p].install(&load));
+                    match load {
+                        0 => black_box(self.pools[p].install(compute)),
+                        _ => black_box(self.pools[p].install(|| memory(&self.words))),
+                    };
                     if run > 0 {
                         ms[p].push(started.elapsed().as_secs_f64() * 1e3);
                     }
                 }
             }
         }
-        frame_speedup(&ms[0], &ms[1])
+        self.samples += 1;
     }
 
-    /// The memory load: the sum of the array's words, a slice a task.
-    fn memory(&self) -> u64 {
-        let slices = self.words.par_chunks(WORDS / TASKS).with_max_len(1);
-        slices.map(|s| s.iter().copied().fold(0, u64::wrapping_add)).reduce(|| 0, u64::wrapping_add)
+    /// Each load's frame speedup on the benchmark's pool over the samples
+    /// since the last call, which are then dropped.
+    fn speedups(&mut self) -> [f64; 2] {
+        let speedups = self.ms.each_ref().map(|[ones, ms]| frame_speedup(ones, ms));
+        self.ms = Default::default();
+        speedups
     }
+}
+
+/// The memory load: the sum of `words`, a slice a task.
+fn memory(words: &[u64]) -> u64 {
+    let slices = words.par_chunks(WORDS / TASKS).with_max_len(1);
+    slices.map(|s| s.iter().copied().fold(0, u64::wrapping_add)).reduce(|| 0, u64::wrapping_add)
 }
 
 /// The arithmetic load: [`TASKS`] chains of [`STEPS`] steps of [`mix`].

@@ -55,7 +55,9 @@ pub struct Timed {
 /// first of them rotating from block to block), the scene's frames made
 /// beforehand, so that a method's frames follow each other as a user's
 /// do. Each block's first frame is untimed: a pool that sat idle while the
-/// other methods ran wakes its threads in it.
+/// other methods ran wakes its threads in it. `between` runs after each
+/// round of blocks, untimed: a benchmark times loads of its own there, in
+/// the same minutes as the frames.
 ///
 /// Frame by frame, a pool's frame paid for the others': on a two-core
 /// virtual machine a load of arithmetic that splits perfectly ran 1.0-1.96x
@@ -68,6 +70,7 @@ pub fn interleaved(
     n: usize,
     frames: usize,
     methods: &mut [Box<dyn Broadphase>],
+    mut between: impl FnMut(),
 ) -> Timed {
     let k = methods.len();
     let blocks = frames.div_ceil(BLOCK - 1);
@@ -92,6 +95,7 @@ pub fn interleaved(
                 digests[i].push(digest_of(found));
             }
         }
+        between();
     }
     for (i, d) in digests.iter().enumerate() {
         if let Some(f) = (0..d.len()).find(|&f| d[f] != digests[0][f]) {
