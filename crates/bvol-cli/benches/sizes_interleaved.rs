@@ -65,10 +65,7 @@ fn sized(kind: SceneKind, sizes: [usize; 2], frames: usize) -> [Vec<f64>; 2] {
         }
     }
     let mut ms = [Vec::with_capacity(frames), Vec::with_capacity(frames)];
-    for b in 0.. {
-        if ms.iter().all(|m| m.len() == frames) {
-            break;
-        }
+    for b in 0..frames.div_ceil(BLOCK - 1) {
         for r in 0..2 {
             let i = (r + b) % 2;
             let (scene, tree) = &mut worlds[i];

@@ -93,7 +93,7 @@ struct Ceiling {
     pools: [rayon::ThreadPool; 2],
     words: Vec<u64>,
     /// Each load's runs since the last [`Ceiling::speedups`], in ms, on
-    /// each pool.
+    /// each pool: [`compute`]'s, then [`memory`]'s.
     ms: [[Vec<f64>; 2]; 2],
     /// Samples taken: which pool goes first turns with each.
     samples: usize,
@@ -109,15 +109,14 @@ impl Ceiling {
     /// Times a block of each load on each pool, each block's first run
     /// untimed.
     fn sample(&mut self) {
+        let words = &self.words;
+        let loads: [&(dyn Fn() -> u64 + Sync); 2] = [&compute, &|| memory(words)];
         for r in 0..2 {
             let p = (r + self.samples) % 2;
-            for (load, ms) in self.ms.iter_mut().enumerate() {
+            for (load, ms) in loads.iter().zip(&mut self.ms) {
                 for run in 0..BLOCK {
                     let started = Instant::now();
-                    match load {
-                        0 => black_box(self.pools[p].install(compute)),
-                        _ => black_box(self.pools[p].install(|| memory(&self.words))),
-                    };
+                    black_box(self.pools[p].install(load));
                     if run > 0 {
                         ms[p].push(started.elapsed().as_secs_f64() * 1e3);
                     }
