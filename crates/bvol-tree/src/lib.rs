@@ -51,6 +51,7 @@
 // scratch timer left in would otherwise go unnoticed).
 #![warn(clippy::print_stdout, clippy::print_stderr)]
 
+mod awake;
 mod bound;
 mod bound_pair;
 mod build;

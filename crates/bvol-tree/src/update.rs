@@ -4,6 +4,7 @@
 //! refit ([`Tree::refit`]). Each checks its input and follows the policy's
 //! path ([`crate::paths`]).
 
+use crate::awake::awake;
 use crate::check::{check_held, check_listed, check_slice};
 use crate::{Bound, Tree, TreeError};
 
@@ -58,15 +59,17 @@ impl<B: Bound> Tree<B> {
     ///
     /// Every bound is checked first: on error nothing has changed.
     pub fn update(&mut self, bounds: &[B]) -> Result<UpdateStats, TreeError> {
-        check_slice(bounds)?;
-        if self.is_empty() {
-            return self.load(bounds);
-        }
-        let mut stats = UpdateStats::default();
-        self.follow(bounds, &mut stats);
-        stats.inserted = self.insert_new(bounds)?;
-        self.policy.record(stats.moved, self.len);
-        Ok(stats)
+        awake(|| {
+            check_slice(bounds)?;
+            if self.is_empty() {
+                return self.load(bounds);
+            }
+            let mut stats = UpdateStats::default();
+            self.follow(bounds, &mut stats);
+            stats.inserted = self.insert_new(bounds)?;
+            self.policy.record(stats.moved, self.len);
+            Ok(stats)
+        })
     }
 
     /// Brings the leaves already in the tree up to date with one frame, as
@@ -99,13 +102,15 @@ impl<B: Bound> Tree<B> {
     /// # Ok::<(), bvol_tree::TreeError>(())
     /// ```
     pub fn update_from(&mut self, bounds: &[B]) -> Result<UpdateStats, TreeError> {
-        check_held(bounds, |id| self.contains(id))?;
-        let mut stats = UpdateStats::default();
-        if !self.is_empty() {
-            self.follow(bounds, &mut stats);
-        }
-        self.policy.record(stats.moved, self.len);
-        Ok(stats)
+        awake(|| {
+            check_held(bounds, |id| self.contains(id))?;
+            let mut stats = UpdateStats::default();
+            if !self.is_empty() {
+                self.follow(bounds, &mut stats);
+            }
+            self.policy.record(stats.moved, self.len);
+            Ok(stats)
+        })
     }
 
     /// Brings the tree up to date with the leaves that moved: `moved[k]` is
@@ -116,15 +121,17 @@ impl<B: Bound> Tree<B> {
     ///
     /// Every id and bound is checked first: on error nothing has changed.
     pub fn update_moved(&mut self, moved: &[(u32, B)]) -> Result<UpdateStats, TreeError> {
-        check_listed(moved, |id| self.contains(id))?;
-        let mut stats = UpdateStats::default();
-        if self.policy.refits(&self.config, moved.len(), self.len) {
-            self.refit_listed(moved, &mut stats);
-        } else {
-            self.move_each(moved.iter().copied(), &mut stats);
-        }
-        self.policy.record(stats.moved, self.len);
-        Ok(stats)
+        awake(|| {
+            check_listed(moved, |id| self.contains(id))?;
+            let mut stats = UpdateStats::default();
+            if self.policy.refits(&self.config, moved.len(), self.len) {
+                self.refit_listed(moved, &mut stats);
+            } else {
+                self.move_each(moved.iter().copied(), &mut stats);
+            }
+            self.policy.record(stats.moved, self.len);
+            Ok(stats)
+        })
     }
 
     /// Refits every internal node bottom-up to the exact merge of its
