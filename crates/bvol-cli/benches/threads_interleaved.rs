@@ -10,14 +10,18 @@
 //! the peers on a smaller world first.
 //!
 //! On a shared host the second core's share moves from minute to minute,
-//! so between the scene's rounds of blocks two fixed loads that split
+//! so between the scene's rounds of blocks three fixed loads that split
 //! perfectly go to the same kinds of pools in the same way ([`Ceiling`]):
-//! arithmetic alone, and sums over an array the size of a 100 000-box
-//! tree's nodes, read from the shared cache and memory as the tree's passes
-//! read theirs. Their speedups, printed beside the scene's (`compute`,
-//! `memory`), are what the host gave two threads while that scene ran; the
-//! neighbours' traffic on a shared host slows the second far more than the
-//! first.
+//! a chain of dependent arithmetic, sums over a slice that stays in the
+//! core's first-level cache, and sums over an array the size of a 100
+//! 000-box tree's nodes, read from the shared cache and memory as the
+//! tree's passes read theirs. Their speedups, printed beside the scene's
+//! (`compute`, `core`, `memory`), are what the host gave two threads while
+//! that scene ran. A dependent chain leaves most of a core idle, so it runs
+//! as fast on the two hardware threads of one physical core as on two
+//! cores; the sums keep a core's units busy and do not. Where the host puts
+//! both virtual processors on one physical core, `compute` stays near 2x
+//! while `core` falls to about 1.2x, and so does every scene.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -41,7 +45,7 @@ fn main() {
     let threads = env("BVOL_BENCH_THREADS", 2);
     println!(
         "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\t\
-         frame_speedup\tcompute\tmemory"
+         frame_speedup\tcompute\tcore\tmemory"
     );
     let mut ceiling = Ceiling::new(threads);
     for kind in scenes(&SceneKind::ALL) {
@@ -49,17 +53,18 @@ fn main() {
         let mut methods: Vec<Box<dyn Broadphase>> =
             vec![Box::new(BvolTree::new(true, 1)), Box::new(BvolTree::new(true, threads))];
         let timed = interleaved(kind, n, frames, &mut methods, || ceiling.sample());
-        let [compute, memory] = ceiling.speedups();
+        let [compute, core, memory] = ceiling.speedups();
         let ones = &timed.frame_ms[0];
         for (t, ms) in [1, threads].into_iter().zip(&timed.frame_ms) {
             let mean = ms.iter().sum::<f64>() / ms.len() as f64;
             println!(
-                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}\t{:.2}",
+                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}",
                 timed.pairs,
                 median(ms),
                 median(ones) / median(ms),
                 frame_speedup(ones, ms),
                 if t == 1 { 1.0 } else { compute },
+                if t == 1 { 1.0 } else { core },
                 if t == 1 { 1.0 } else { memory },
             );
         }
@@ -80,6 +85,13 @@ const TASKS: usize = 64;
 /// Steps of arithmetic in one task of the [`Ceiling`]'s arithmetic load.
 const STEPS: u64 = 20_000;
 
+/// Words in a task's slice of the [`Ceiling`]'s core load: 16 KiB, half
+/// a first-level data cache.
+const SLICE: usize = 2048;
+
+/// Passes over its slice in one task of the [`Ceiling`]'s core load.
+const PASSES: usize = 200;
+
 /// Words in the array of the [`Ceiling`]'s memory load: 8 MiB, about a
 /// 100 000-box tree's nodes, more than the private caches hold.
 const WORDS: usize = 1 << 20;
@@ -87,14 +99,14 @@ const WORDS: usize = 1 << 20;
 /// Fixed loads in equal tasks with nothing shared, timed on a one-thread
 /// pool and on the benchmark's in blocks in turn, as the frames are: the
 /// speedup the host gives two threads of work that loses nothing to its
-/// split, for arithmetic ([`compute`]) and for reading memory
-/// ([`memory`]).
+/// split, for dependent arithmetic ([`compute`]), for a core's units
+/// kept busy ([`core`]) and for reading memory ([`memory`]).
 struct Ceiling {
     pools: [rayon::ThreadPool; 2],
     words: Vec<u64>,
     /// Each load's runs since the last [`Ceiling::speedups`], in ms, on
-    /// each pool: [`compute`]'s, then [`memory`]'s.
-    ms: [[Vec<f64>; 2]; 2],
+    /// each pool: [`compute`]'s, [`core`]'s, then [`memory`]'s.
+    ms: [[Vec<f64>; 2]; 3],
     /// Samples taken: which pool goes first turns with each.
     samples: usize,
 }
@@ -110,7 +122,8 @@ impl Ceiling {
     /// untimed.
     fn sample(&mut self) {
         let words = &self.words;
-        let loads: [&(dyn Fn() -> u64 + Sync); 2] = [&compute, &|| memory(words)];
+        let core = || core(&words[..TASKS * SLICE]);
+        let loads: [&(dyn Fn() -> u64 + Sync); 3] = [&compute, &core, &|| memory(words)];
         for r in 0..2 {
             let p = (r + self.samples) % 2;
             for (load, ms) in loads.iter().zip(&mut self.ms) {
@@ -128,11 +141,30 @@ impl Ceiling {
 
     /// Each load's frame speedup on the benchmark's pool over the samples
     /// since the last call, which are then dropped.
-    fn speedups(&mut self) -> [f64; 2] {
+    fn speedups(&mut self) -> [f64; 3] {
         let speedups = self.ms.each_ref().map(|[ones, ms]| frame_speedup(ones, ms));
         self.ms = Default::default();
         speedups
     }
+}
+
+/// The core load: each task sums its [`SLICE`] of `words` [`PASSES`]
+/// times, in eight independent lanes: no wait on memory or on a previous
+/// step, only on the core's units.
+fn core(words: &[u64]) -> u64 {
+    let task = |slice: &[u64]| {
+        let mut lanes = [0u64; 8];
+        for _ in 0..PASSES {
+            for chunk in black_box(slice).chunks_exact(8) {
+                for (lane, &w) in lanes.iter_mut().zip(chunk) {
+                    *lane = lane.wrapping_add(w);
+                }
+            }
+        }
+        lanes.into_iter().fold(0, u64::wrapping_add)
+    };
+    let slices = words.par_chunks(SLICE).with_max_len(1);
+    slices.map(task).reduce(|| 0, u64::wrapping_add)
 }
 
 /// The memory load: the sum of `words`, a slice a task.
