@@ -21,7 +21,11 @@
 //! as fast on the two hardware threads of one physical core as on two
 //! cores; the sums keep a core's units busy and do not. Where the host puts
 //! both virtual processors on one physical core, `compute` stays near 2x
-//! while `core` falls to about 1.2x, and so does every scene.
+//! while `core` falls to about 1.2x, and so does every scene. So the
+//! speedup is also printed over the rounds of blocks alone that the core
+//! load, timed just before and just after, found on two physical cores
+//! (`two_cores`, over `rounds` of all; `-` when none was): what the code
+//! gains from a second core where the host gives it one.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -45,7 +49,7 @@ fn main() {
     let threads = env("BVOL_BENCH_THREADS", 2);
     println!(
         "scene\tn\tframes\tpairs_per_frame\tthreads\tmedian_ms\tmean_ms\tspeedup\t\
-         frame_speedup\tcompute\tcore\tmemory"
+         frame_speedup\tcompute\tcore\tmemory\ttwo_cores\trounds"
     );
     let mut ceiling = Ceiling::new(threads);
     for kind in scenes(&SceneKind::ALL) {
@@ -53,12 +57,13 @@ fn main() {
         let mut methods: Vec<Box<dyn Broadphase>> =
             vec![Box::new(BvolTree::new(true, 1)), Box::new(BvolTree::new(true, threads))];
         let timed = interleaved(kind, n, frames, &mut methods, || ceiling.sample());
+        let (rounds, on_two) = two_cores(&timed.frame_ms, &ceiling.core_rounds());
         let [compute, core, memory] = ceiling.speedups();
         let ones = &timed.frame_ms[0];
         for (t, ms) in [1, threads].into_iter().zip(&timed.frame_ms) {
             let mean = ms.iter().sum::<f64>() / ms.len() as f64;
             println!(
-                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}",
+                "{kind}\t{n}\t{frames}\t{}\t{t}\t{:.3}\t{mean:.3}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{:.2}\t{}\t{}/{}",
                 timed.pairs,
                 median(ms),
                 median(ones) / median(ms),
@@ -66,9 +71,35 @@ fn main() {
                 if t == 1 { 1.0 } else { compute },
                 if t == 1 { 1.0 } else { core },
                 if t == 1 { 1.0 } else { memory },
+                match (on_two, t) {
+                    (None, _) => "-".to_string(),
+                    (Some(_), 1) => "1.00".to_string(),
+                    (Some(speedup), _) => format!("{speedup:.2}"),
+                },
+                rounds.0,
+                rounds.1,
             );
         }
     }
+}
+
+/// The [`Ceiling`]'s `core` load at or above this speedup ran on two
+/// physical cores; one core's two hardware threads give it about 1.2x.
+const TWO_CORES: f64 = 1.8;
+
+/// The speedup of the pool's median frame (`frame_ms[1]`) over the
+/// rounds of blocks that the core load, timed just before and just after
+/// the round (`core[b - 1]` and `core[b]`), found on two physical cores;
+/// with those rounds' count and the count of all. None when no round was.
+fn two_cores(frame_ms: &[Vec<f64>], core: &[f64]) -> ((usize, usize), Option<f64>) {
+    let good = |b: usize| core[b] >= TWO_CORES && (b == 0 || core[b - 1] >= TWO_CORES);
+    let kept = |ms: &Vec<f64>| -> Vec<f64> {
+        let rounds = ms.chunks(BLOCK - 1).enumerate();
+        rounds.filter(|(b, _)| good(*b)).flat_map(|(_, round)| round.iter().copied()).collect()
+    };
+    let count = (0..core.len()).filter(|&b| good(b)).count();
+    let speedup = (count > 0).then(|| median(&kept(&frame_ms[0])) / median(&kept(&frame_ms[1])));
+    ((count, core.len()), speedup)
 }
 
 /// The median of the frames' own speedups: each one-thread frame's time
@@ -137,6 +168,15 @@ impl Ceiling {
             }
         }
         self.samples += 1;
+    }
+
+    /// The core load's speedup in each sample since the last
+    /// [`Ceiling::speedups`], in order: the median of its runs on the
+    /// one-thread pool over the median on the benchmark's.
+    fn core_rounds(&self) -> Vec<f64> {
+        let [ones, ms] = &self.ms[1];
+        let runs = |v: &[f64]| v.chunks(BLOCK - 1).map(median).collect::<Vec<_>>();
+        runs(ones).iter().zip(runs(ms)).map(|(one, this)| one / this).collect()
     }
 
     /// Each load's frame speedup on the benchmark's pool over the samples
