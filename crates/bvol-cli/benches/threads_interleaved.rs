@@ -24,8 +24,9 @@
 //! while `core` falls to about 1.2x, and so does every scene. So the
 //! speedup is also printed over the rounds of blocks alone that the core
 //! load, timed just before and just after, found on two physical cores
-//! (`two_cores`, over `rounds` of all; `-` when none was): what the code
-//! gains from a second core where the host gives it one.
+//! (`two_cores`, the frames' own median speedup there, over `rounds` of
+//! all; `-` when none was): what the code gains from a second core where
+//! the host gives it one.
 //!
 //! `cargo bench -p bvol-cli --bench threads_interleaved [-- SCENE...]`; N from
 //! `BVOL_BENCH_N` (default 100 000), frames timed from `BVOL_BENCH_FRAMES`
@@ -87,10 +88,13 @@ fn main() {
 /// physical cores; one core's two hardware threads give it about 1.2x.
 const TWO_CORES: f64 = 1.8;
 
-/// The speedup of the pool's median frame (`frame_ms[1]`) over the
-/// rounds of blocks that the core load, timed just before and just after
-/// the round (`core[b - 1]` and `core[b]`), found on two physical cores;
-/// with those rounds' count and the count of all. None when no round was.
+/// The median of the frames' own speedups on the pool (`frame_ms[1]`, as
+/// [`frame_speedup`]) over the rounds of blocks that the core load, timed
+/// just before and just after the round (`core[b - 1]` and `core[b]`),
+/// found on two physical cores; with those rounds' count and the count of
+/// all. None when no round was. Each frame against itself: heap's rounds
+/// on two cores may hold its falling frames on one pool's side of the
+/// median and its settled ones on the other's.
 fn two_cores(frame_ms: &[Vec<f64>], core: &[f64]) -> ((usize, usize), Option<f64>) {
     let good = |b: usize| core[b] >= TWO_CORES && (b == 0 || core[b - 1] >= TWO_CORES);
     let kept = |ms: &Vec<f64>| -> Vec<f64> {
@@ -98,7 +102,7 @@ fn two_cores(frame_ms: &[Vec<f64>], core: &[f64]) -> ((usize, usize), Option<f64
         rounds.filter(|(b, _)| good(*b)).flat_map(|(_, round)| round.iter().copied()).collect()
     };
     let count = (0..core.len()).filter(|&b| good(b)).count();
-    let speedup = (count > 0).then(|| median(&kept(&frame_ms[0])) / median(&kept(&frame_ms[1])));
+    let speedup = (count > 0).then(|| frame_speedup(&kept(&frame_ms[0]), &kept(&frame_ms[1])));
     ((count, core.len()), speedup)
 }
 
