@@ -7,10 +7,10 @@
 //! dozen rounds and then sleeps; the next pass hands it work and waits
 //! while the system wakes it, which on a virtual machine (a halted virtual
 //! processor woken by the hypervisor) takes tens of microseconds at every
-//! pass. Job systems of physics engines keep their workers spinning
-//! through a step for this reason (Box2D v3's task callbacks, Jolt's job
-//! system); here a keeper task on each other thread spins while the call
-//! runs, running any of the pool's work it finds, and ends with the call.
+//! pass. Box2D v3's solver keeps its workers spinning between its stages
+//! for this reason (`b2SolverTask`); here a keeper task on each other
+//! thread spins while the call runs, running any of the pool's work it
+//! finds, and ends with the call.
 
 use std::sync::atomic::{AtomicBool, Ordering};
 
@@ -87,9 +87,8 @@ mod tests {
 
     #[test]
     fn a_call_from_outside_the_pools_returns_its_work() {
-        // Run on the global pool, with tasks inside that the other threads
-        // may steal while their keepers look for work.
-        // Counts to `n` by halves on tasks.
+        /// Counts to `n` by halves on tasks, which the other threads may
+        /// steal while their keepers look for work.
         fn sum(n: u64) -> u64 {
             match n {
                 0 | 1 => n,
