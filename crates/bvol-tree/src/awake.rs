@@ -1,9 +1,9 @@
-//! The pool's other threads kept awake through one call of the tree's, so
-//! that its parallel passes do not wait for them to wake.
+//! The pool's other threads kept awake through one update of the tree's,
+//! so that its parallel passes do not wait for them to wake.
 //!
-//! An update or a pair-set update runs several parallel passes with short
-//! serial stretches between them (the policy's choices, joining parts,
-//! reinserting leaves). A rayon worker that finds no work spins a few
+//! An update that scans or refits the whole tree runs several parallel
+//! passes with serial stretches between them (the policy's choices,
+//! reinserting leaves, the rebuild's steps). A rayon worker that finds no work spins a few
 //! dozen rounds and then sleeps; the next pass hands it work and waits
 //! while the system wakes it, which on a virtual machine (a halted virtual
 //! processor woken by the hypervisor) takes tens of microseconds at every

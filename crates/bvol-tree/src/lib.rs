@@ -17,12 +17,11 @@
 //! - Check: [`Tree::validate`] returns the first broken invariant.
 //! - Threads: the work runs on the current rayon pool (run it inside
 //!   `ThreadPool::install` to choose one), with the same results on any
-//!   number of threads. The per-frame calls ([`Tree::update`],
-//!   [`Tree::update_from`], [`Tree::update_moved`], [`PairCache::update`],
-//!   [`PairSet::update`]) keep the pool's other threads busy until they
-//!   return, running the pool's pending work or spinning, so that each
-//!   parallel pass after a serial stretch does not wait for a sleeping
-//!   thread to wake.
+//!   number of threads. The frame updates ([`Tree::update`],
+//!   [`Tree::update_from`], and [`Tree::update_moved`] when it refits)
+//!   keep the pool's other threads busy until they return, running the
+//!   pool's pending work or spinning, so that each parallel pass after a
+//!   serial stretch does not wait for a sleeping thread to wake.
 //!
 //! A frame of a broadphase that is handed every body's box every frame:
 //!

@@ -4,7 +4,6 @@
 
 use rayon::prelude::*;
 
-use crate::awake::awake;
 use crate::{Bound, SearchStats, Tree};
 
 /// Changed ids per task of a cache or pair set update's queries.
@@ -79,24 +78,22 @@ impl PairCache {
     /// Brings the pairs up to date with `tree` and clears the tree's change
     /// log.
     pub fn update<B: Bound>(&mut self, tree: &mut Tree<B>) -> CacheUpdate {
-        awake(|| {
-            let changes = &tree.changes;
-            let update = if changes.few(tree.len()) {
-                // Independent: the queries read the tree, the drop the old pairs.
-                rayon::join(
-                    || tree.changed_pairs(&mut self.fresh),
-                    || changes.swap_out_touched(&mut self.pairs),
-                );
-                let kept = self.pairs.len();
-                self.pairs.extend_from_slice(&self.fresh);
-                CacheUpdate { search: None, kept, queried: changes.ids().len() }
-            } else {
-                let search = tree.pairs_into(&mut self.pairs);
-                CacheUpdate { search: Some(search), kept: 0, queried: 0 }
-            };
-            tree.changes.clear();
-            update
-        })
+        let changes = &tree.changes;
+        let update = if changes.few(tree.len()) {
+            // Independent: the queries read the tree, the drop the old pairs.
+            rayon::join(
+                || tree.changed_pairs(&mut self.fresh),
+                || changes.swap_out_touched(&mut self.pairs),
+            );
+            let kept = self.pairs.len();
+            self.pairs.extend_from_slice(&self.fresh);
+            CacheUpdate { search: None, kept, queried: changes.ids().len() }
+        } else {
+            let search = tree.pairs_into(&mut self.pairs);
+            CacheUpdate { search: Some(search), kept: 0, queried: 0 }
+        };
+        tree.changes.clear();
+        update
     }
 }
 

@@ -1,7 +1,6 @@
 //! The persistent pair set: a tree's overlapping pairs kept across frames,
 //! with the pairs that began and ended at each update.
 
-use crate::awake::awake;
 use crate::{Bound, Tree, sort_pairs};
 
 /// The overlapping pairs of one [`Tree`], kept up to date frame to frame,
@@ -68,27 +67,25 @@ impl PairSet {
     /// Brings the set up to date with `tree` and clears the tree's change
     /// log. Deterministic: the same lists whatever the thread count.
     pub fn update<B: Bound>(&mut self, tree: &mut Tree<B>) {
-        awake(|| {
-            let changes = &tree.changes;
-            if !changes.few(tree.len()) {
-                tree.pairs_into(&mut self.fresh);
-                self.sort_fresh(tree.leaf_parents.len());
-                diff(&self.pairs, &self.fresh, &mut self.ended, &mut self.began);
-                std::mem::swap(&mut self.pairs, &mut self.fresh);
-            } else {
-                tree.changed_pairs(&mut self.fresh);
-                self.sort_fresh(tree.leaf_parents.len());
-                // The old pairs touching a changed leaf are the candidates to end
-                // (moved aside, in order); the others are kept as they are.
-                self.sorted.clear();
-                changes.drop_touched(&mut self.pairs, |pair| self.sorted.push(pair));
-                diff(&self.sorted, &self.fresh, &mut self.ended, &mut self.began);
-                self.sorted.clear();
-                merge(&self.pairs, &self.fresh, &mut self.sorted);
-                std::mem::swap(&mut self.pairs, &mut self.sorted);
-            }
-            tree.changes.clear();
-        })
+        let changes = &tree.changes;
+        if !changes.few(tree.len()) {
+            tree.pairs_into(&mut self.fresh);
+            self.sort_fresh(tree.leaf_parents.len());
+            diff(&self.pairs, &self.fresh, &mut self.ended, &mut self.began);
+            std::mem::swap(&mut self.pairs, &mut self.fresh);
+        } else {
+            tree.changed_pairs(&mut self.fresh);
+            self.sort_fresh(tree.leaf_parents.len());
+            // The old pairs touching a changed leaf are the candidates to end
+            // (moved aside, in order); the others are kept as they are.
+            self.sorted.clear();
+            changes.drop_touched(&mut self.pairs, |pair| self.sorted.push(pair));
+            diff(&self.sorted, &self.fresh, &mut self.ended, &mut self.began);
+            self.sorted.clear();
+            merge(&self.pairs, &self.fresh, &mut self.sorted);
+            std::mem::swap(&mut self.pairs, &mut self.sorted);
+        }
+        tree.changes.clear();
     }
 
     /// Sorts `fresh`, whose ids are below `ids`, by `(a, b)`.

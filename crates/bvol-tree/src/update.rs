@@ -121,17 +121,16 @@ impl<B: Bound> Tree<B> {
     ///
     /// Every id and bound is checked first: on error nothing has changed.
     pub fn update_moved(&mut self, moved: &[(u32, B)]) -> Result<UpdateStats, TreeError> {
-        awake(|| {
-            check_listed(moved, |id| self.contains(id))?;
-            let mut stats = UpdateStats::default();
-            if self.policy.refits(&self.config, moved.len(), self.len) {
-                self.refit_listed(moved, &mut stats);
-            } else {
-                self.move_each(moved.iter().copied(), &mut stats);
-            }
-            self.policy.record(stats.moved, self.len);
-            Ok(stats)
-        })
+        check_listed(moved, |id| self.contains(id))?;
+        let mut stats = UpdateStats::default();
+        if self.policy.refits(&self.config, moved.len(), self.len) {
+            // Keepers for the refit's passes; per-leaf moves run on this thread.
+            awake(|| self.refit_listed(moved, &mut stats));
+        } else {
+            self.move_each(moved.iter().copied(), &mut stats);
+        }
+        self.policy.record(stats.moved, self.len);
+        Ok(stats)
     }
 
     /// Refits every internal node bottom-up to the exact merge of its
