@@ -3,11 +3,11 @@
 //!
 //! An update that scans or refits the whole tree runs several parallel
 //! passes with serial stretches between them (the policy's choices,
-//! reinserting leaves, the rebuild's steps). A rayon worker that finds no work spins a few
-//! dozen rounds and then sleeps; the next pass hands it work and waits
-//! while the system wakes it, which on a virtual machine (a halted virtual
-//! processor woken by the hypervisor) takes tens of microseconds at every
-//! pass. Box2D v3's solver keeps its workers spinning between its stages
+//! reinserting leaves, the rebuild's steps). A rayon worker that finds no
+//! work spins a few dozen rounds and then sleeps; the next pass hands it
+//! work and waits while the system wakes it, which on a virtual machine (a
+//! halted virtual processor woken by the hypervisor) takes tens of
+//! microseconds at every pass. Box2D v3's solver keeps its workers spinning between its stages
 //! for this reason (`b2SolverTask`); here a keeper task on each other
 //! thread spins while the call runs, running any of the pool's work it
 //! finds, and ends with the call.
